@@ -1,0 +1,268 @@
+// streak: the command line. The only place where an Error becomes one stderr line and exit 2.
+
+#include "image/image_io.h"
+#include "image/metrics.h"
+#include "methods/registry.h"
+#include "raster/clip.h"
+#include "scene/builtin_scenes.h"
+#include "scene/scene_loader.h"
+#include "util/error.h"
+
+#include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+namespace streak {
+namespace {
+
+constexpr int kExitBadInput = 2;
+
+// A one-line progress bar on stderr, drawn only when stderr is a terminal.
+class TerminalProgress final : public ProgressReporter {
+public:
+    TerminalProgress() : m_enabled(isatty(STDERR_FILENO) != 0) {}
+    ~TerminalProgress() override {
+        if (m_drawn) std::fprintf(stderr, "\r%60s\r", "");
+    }
+    void update(double fraction) override {
+        if (!m_enabled) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (fraction < 1.0 && m_drawn && now - m_last < std::chrono::milliseconds(100)) return;
+        m_last = now;
+        m_drawn = true;
+        const int width = 40, filled = int(fraction * width + 0.5);
+        std::fprintf(stderr, "\r[%s%s] %3d%%", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+                     int(fraction * 100.0 + 0.5));
+        std::fflush(stderr);
+    }
+
+private:
+    bool m_enabled;
+    bool m_drawn = false;
+    std::chrono::steady_clock::time_point m_last;
+};
+
+// Throws Error unless `path` could be created: a known extension in an existing, writable folder.
+void checkWritable(const std::string& path, bool mustBeImage) {
+    if (mustBeImage) imageFormatFromPath(path);
+    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(parent, ec)) throw Error("cannot write " + path + ": folder " + parent.string() + " does not exist");
+    if (std::filesystem::is_directory(path, ec)) throw Error("cannot write " + path + ": it is a folder");
+    if (access(parent.c_str(), W_OK) != 0) throw Error("cannot write " + path + ": folder is not writable");
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+    const std::string temporary = path + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary);
+        out << text;
+        if (!out) {
+            std::filesystem::remove(temporary);
+            throw Error("cannot write " + path);
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, path, ec);
+    if (ec) {
+        std::filesystem::remove(temporary);
+        throw Error("cannot write " + path + ": " + ec.message());
+    }
+}
+
+glm::vec3 parseColor(const std::string& text) {
+    glm::vec3 c;
+    char extra = 0;
+    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &c.x, &c.y, &c.z, &extra) != 3 || !std::isfinite(c.x) || !std::isfinite(c.y) ||
+        !std::isfinite(c.z) || c.x < 0 || c.y < 0 || c.z < 0)
+        throw Error("--background must be three non-negative numbers r,g,b, got '" + text + "'");
+    return c;
+}
+
+struct RenderArgs {
+    std::string scene = "builtin:cubes";
+    std::string method = "accumulation";
+    std::string output = "streak.png";
+    int width = 1024;
+    int height = 768;
+    std::optional<int> samples;
+    int aa = 1;
+    std::string shading = "phong";
+    std::optional<std::string> background;
+    std::uint64_t seed = 0;
+    int threads = 0;
+    std::string stats;
+};
+
+int runRender(const RenderArgs& args) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    if (args.width <= 0 || args.height <= 0 || args.width > raster::kMaxImageSize || args.height > raster::kMaxImageSize)
+        throw Error("--width and --height must be in [1, " + std::to_string(raster::kMaxImageSize) + "], got " +
+                    std::to_string(args.width) + "x" + std::to_string(args.height));
+    if (args.aa < 1 || args.aa > 16) throw Error("--aa must be in [1, 16], got " + std::to_string(args.aa));
+    if (args.threads < 0) throw Error("--threads must be 0 (all cores) or more, got " + std::to_string(args.threads));
+    if (args.samples && *args.samples <= 0) throw Error("--samples must be positive, got " + std::to_string(*args.samples));
+    RenderSettings settings;
+    settings.width = args.width;
+    settings.height = args.height;
+    settings.aa = args.aa;
+    settings.seed = args.seed;
+    if (args.shading == "phong") settings.shading = ShadingMode::Phong;
+    else if (args.shading == "unlit") settings.shading = ShadingMode::Unlit;
+    else throw Error("--shading must be phong or unlit, got '" + args.shading + "'");
+
+    OptionMap methodOptions;
+    if (args.samples) methodOptions.set("samples", std::to_string(*args.samples));
+    std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
+    checkWritable(args.output, true);
+    if (!args.stats.empty()) checkWritable(args.stats, false);
+
+    std::optional<tbb::global_control> threadLimit;
+    if (args.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
+
+    RenderStats stats;
+    Scene scene;
+    SceneCleanup cleanup;
+    {
+        PhaseTimer timer(stats, "load");
+        scene = loadScene(args.scene);
+        if (args.background) scene.background = parseColor(*args.background);
+        cleanup = validateScene(scene);
+    }
+    stats.setInfo("scene", args.scene);
+    stats.setInfo("method", args.method);
+    stats.setInfo("shading", args.shading);
+    stats.setCounter("width", args.width);
+    stats.setCounter("height", args.height);
+    stats.setCounter("aa", args.aa);
+    stats.setCounter("triangles", double(scene.numTriangles()));
+    stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
+    stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
+    stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
+
+    TerminalProgress progress;
+    RenderContext context{stats, &progress};
+    Image image;
+    {
+        PhaseTimer timer(stats, "render");
+        image = renderer->render(scene, settings, context);
+    }
+    writeImage(image, args.output);
+    stats.addTime("total", std::chrono::duration<double>(Clock::now() - start).count());
+    if (!args.stats.empty()) {
+        try {
+            writeTextFile(args.stats, stats.toJson());
+        } catch (const Error&) {
+            std::filesystem::remove(args.output);  // all or nothing
+            throw;
+        }
+    }
+    return 0;
+}
+
+int runCompare(const std::string& a, const std::string& b, const std::string& heatmap) {
+    if (!heatmap.empty()) checkWritable(heatmap, true);
+    const Image imageA = readImage(a);
+    const Image imageB = readImage(b);
+    if (imageA.width() != imageB.width() || imageA.height() != imageB.height())
+        throw Error("cannot compare " + a + " (" + std::to_string(imageA.width()) + "x" + std::to_string(imageA.height()) + ") with " +
+                    b + " (" + std::to_string(imageB.width()) + "x" + std::to_string(imageB.height()) + "): sizes differ");
+    const double p = psnr(imageA, imageB);
+    const double s = ssim(imageA, imageB);
+    std::ostringstream out;
+    out.precision(4);
+    out << std::fixed << "PSNR: " << (std::isinf(p) ? std::string("inf") : (std::ostringstream() << std::fixed << std::setprecision(4) << p).str())
+        << " dB\nSSIM: " << s << "\n";
+    if (!heatmap.empty()) {
+        double maxError = 0.0;
+        writeImage(errorHeatmap(imageA, imageB, &maxError), heatmap);
+        out << "heatmap: " << heatmap << " (white = " << maxError << " largest error)\n";
+    }
+    std::cout << out.str();
+    return 0;
+}
+
+int runScenes() {
+    for (const BuiltinSceneInfo& info : builtinScenes()) std::cout << "builtin:" << info.name << "  " << info.description << "\n";
+    return 0;
+}
+
+int runMethods() {
+    for (const MethodInfo& info : registeredMethods()) std::cout << info.name << "  " << info.description << "\n";
+    return 0;
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{"streak: analytic motion blur of moving and deforming triangle meshes"};
+    app.require_subcommand(1);
+
+    RenderArgs renderArgs;
+    CLI::App* render = app.add_subcommand("render", "render a scene with motion blur over the shutter [0,1]");
+    render->add_option("scene", renderArgs.scene, "scene: builtin:NAME[?key=value&...] (see 'streak scenes')")->capture_default_str();
+    render->add_option("-m,--method", renderArgs.method, "motion-blur method (see 'streak methods')")->capture_default_str();
+    render->add_option("-o,--output", renderArgs.output, "output image: .png (sRGB 8-bit) or .exr (linear float)")->capture_default_str();
+    render->add_option("--width", renderArgs.width, "image width in pixels")->capture_default_str();
+    render->add_option("--height", renderArgs.height, "image height in pixels")->capture_default_str();
+    render->add_option("--samples", renderArgs.samples, "time samples (accumulation: 256 shutter times; stochastic: 8 per pixel)");
+    render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
+    render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
+    render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
+    render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
+    render->add_option("--threads", renderArgs.threads, "worker threads (0: all cores)")->capture_default_str();
+    render->add_option("--stats", renderArgs.stats, "write figures of the render (times, counters) as JSON to this file");
+
+    std::string compareA, compareB, heatmap;
+    CLI::App* compare = app.add_subcommand("compare", "print PSNR (dB) and SSIM of two images of the same size");
+    compare->add_option("a", compareA, "first image (.png or .exr)")->required();
+    compare->add_option("b", compareB, "second image (.png or .exr)")->required();
+    compare->add_option("--heatmap", heatmap, "write a false-colour image of the per-pixel error");
+
+    CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, one per line");
+    CLI::App* methods = app.add_subcommand("methods", "list the motion-blur methods, one per line");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::string message = e.what();
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        std::cerr << "streak: error: " << message << "\n";
+        return kExitBadInput;
+    }
+    if (render->parsed()) return runRender(renderArgs);
+    if (compare->parsed()) return runCompare(compareA, compareB, heatmap);
+    if (scenes->parsed()) return runScenes();
+    if (methods->parsed()) return runMethods();
+    return kExitBadInput;
+}
+
+}  // namespace
+}  // namespace streak
+
+int main(int argc, char** argv) {
+    try {
+        return streak::run(argc, argv);
+    } catch (const streak::Error& e) {
+        std::cerr << "streak: error: " << e.what() << "\n";
+        return streak::kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "streak: internal error: " << e.what() << "\n";
+        return 1;
+    }
+}

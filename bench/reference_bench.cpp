@@ -1,0 +1,49 @@
+// Google Benchmark programs for the reference renderers: the cost of one shutter time
+// (accumulation) and of one time stratum (stochastic) on the built-in scenes, so later methods
+// can be compared at equal quality. No assertions: figures go to docs/BENCHMARKS.md.
+
+#include "methods/registry.h"
+#include "scene/builtin_scenes.h"
+#include "scene/scene_loader.h"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+void renderOnce(benchmark::State& state, const std::string& method, const std::string& spec, int samples, int width, int height) {
+    streak::Scene scene = streak::loadScene(spec);
+    streak::validateScene(scene);
+    streak::OptionMap options;
+    options.set("samples", std::to_string(samples));
+    auto renderer = streak::createRenderer(method, options);
+    streak::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    for (auto _ : state) {
+        streak::RenderStats stats;
+        streak::RenderContext context{stats};
+        benchmark::DoNotOptimize(renderer->render(scene, settings, context));
+    }
+    state.counters["triangles"] = double(scene.numTriangles());
+    state.counters["ms_per_time_sample"] =
+        benchmark::Counter(double(samples) * 1e-3, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_AccumulationCubes(benchmark::State& state) {
+    renderOnce(state, "accumulation", "builtin:cubes?n=" + std::to_string(state.range(0)), 16, 1024, 768);
+}
+BENCHMARK(BM_AccumulationCubes)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_StochasticCubes(benchmark::State& state) {
+    renderOnce(state, "stochastic", "builtin:cubes?n=" + std::to_string(state.range(0)), 2, 1024, 768);
+}
+BENCHMARK(BM_StochasticCubes)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_AccumulationRotatingCube(benchmark::State& state) {
+    renderOnce(state, "accumulation", "builtin:rotating-cube", 64, 1024, 768);
+}
+BENCHMARK(BM_AccumulationRotatingCube)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,279 @@
+#include "image/image_io.h"
+
+#include "image/color.h"
+#include "util/error.h"
+
+#include <Iex.h>
+#include <ImathBox.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+namespace streak {
+
+namespace {
+
+// Helpers throw std::runtime_error carrying only the reason; writeImage/readImage add the path.
+std::string errnoReason(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+// streak::Error messages are one line; library messages occasionally are not.
+std::string oneLine(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+// OpenEXR's encoder seeks back to patch its offset table, so it needs a seekable sink.
+class MemoryOStream : public Imf::OStream {
+public:
+    explicit MemoryOStream(const std::string& name) : Imf::OStream(name.c_str()) {}
+
+    void write(const char c[], int n) override {
+        const std::size_t end = m_pos + std::size_t(n);
+        if (end > m_bytes.size()) m_bytes.resize(end);
+        std::memcpy(m_bytes.data() + m_pos, c, std::size_t(n));
+        m_pos = end;
+    }
+    std::uint64_t tellp() override { return m_pos; }
+    void seekp(std::uint64_t pos) override { m_pos = std::size_t(pos); }
+
+    std::vector<char>& bytes() { return m_bytes; }
+
+private:
+    std::vector<char> m_bytes;
+    std::size_t m_pos = 0;
+};
+
+class MemoryIStream : public Imf::IStream {
+public:
+    MemoryIStream(const std::string& name, const std::vector<char>& bytes)
+        : Imf::IStream(name.c_str()), m_bytes(bytes) {}
+
+    bool read(char c[], int n) override {
+        if (n < 0 || m_pos > m_bytes.size() || std::size_t(n) > m_bytes.size() - m_pos)
+            throw Iex::InputExc("unexpected end of file");
+        std::memcpy(c, m_bytes.data() + m_pos, std::size_t(n));
+        m_pos += std::size_t(n);
+        return m_pos < m_bytes.size();
+    }
+    std::uint64_t tellg() override { return m_pos; }
+    void seekg(std::uint64_t pos) override { m_pos = std::size_t(pos); }
+
+private:
+    const std::vector<char>& m_bytes;
+    std::size_t m_pos = 0;
+};
+
+void appendBytes(void* context, void* data, int size) {
+    auto* bytes = static_cast<std::vector<char>*>(context);
+    const char* begin = static_cast<const char*>(data);
+    bytes->insert(bytes->end(), begin, begin + size);
+}
+
+std::vector<char> encodePng(const Image& image) {
+    std::vector<std::uint8_t> codes;
+    codes.reserve(image.pixels().size() * 3);
+    for (const glm::vec3& p : image.pixels()) {
+        codes.push_back(linearToSrgb8(p.x));
+        codes.push_back(linearToSrgb8(p.y));
+        codes.push_back(linearToSrgb8(p.z));
+    }
+    std::vector<char> bytes;
+    if (!stbi_write_png_to_func(appendBytes, &bytes, image.width(), image.height(), 3,
+                                codes.data(), image.width() * 3))
+        throw std::runtime_error("PNG encoding failed");
+    return bytes;
+}
+
+std::vector<char> encodeExr(const Image& image, const std::string& path) {
+    Imf::Header header(image.width(), image.height());  // ZIP compression: lossless
+    for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+
+    // Slice wants a non-const base pointer even for writing; it only reads through it.
+    auto* first = const_cast<glm::vec3*>(image.pixels().data());
+    const std::size_t xStride = sizeof(glm::vec3);
+    const std::size_t yStride = xStride * std::size_t(image.width());
+    Imf::FrameBuffer frameBuffer;
+    frameBuffer.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->x), xStride, yStride));
+    frameBuffer.insert("G", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->y), xStride, yStride));
+    frameBuffer.insert("B", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->z), xStride, yStride));
+
+    MemoryOStream stream(path);
+    {
+        // The offset table is written by the destructor, which swallows errors; in memory it
+        // cannot fail, and the real file I/O below reports its own errors.
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(frameBuffer);
+        file.writePixels(image.height());
+    }
+    return std::move(stream.bytes());
+}
+
+// A name beside the target, so the final rename stays within one file system.
+std::string tempPathFor(const std::string& path) {
+    static const unsigned processTag = std::random_device{}();
+    static std::atomic<unsigned> counter{0};
+    char suffix[32];
+    std::snprintf(suffix, sizeof(suffix), ".tmp-%08x-%x", processTag, counter++);
+    return path + suffix;
+}
+
+// Writes to a temporary file and renames it over path, so readers never see a partial file
+// and a failure leaves nothing behind.
+void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
+    const std::string temp = tempPathFor(path);
+    std::FILE* file = std::fopen(temp.c_str(), "wbx");  // x: never clobber another writer's temp
+    if (!file) throw std::runtime_error(errnoReason(errno));
+
+    int err = 0;
+    if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) err = errno ? errno : EIO;
+    if (std::fclose(file) != 0 && err == 0) err = errno ? errno : EIO;
+    if (err != 0) {
+        std::remove(temp.c_str());
+        throw std::runtime_error(errnoReason(err));
+    }
+
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::remove(temp.c_str());
+        throw std::runtime_error(ec.message());
+    }
+}
+
+std::vector<char> readFile(const std::string& path) {
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) throw std::runtime_error(errnoReason(errno));
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, std::fclose);
+
+    std::vector<char> bytes;
+    std::error_code ec;
+    if (const auto size = std::filesystem::file_size(path, ec); !ec) bytes.reserve(size);
+    char chunk[1 << 16];
+    std::size_t n = 0;
+    while ((n = std::fread(chunk, 1, sizeof(chunk), file)) > 0) bytes.insert(bytes.end(), chunk, chunk + n);
+    if (std::ferror(file)) throw std::runtime_error(errnoReason(errno ? errno : EIO));  // e.g. a directory
+    return bytes;
+}
+
+Image decodePng(const std::vector<char>& bytes) {
+    static constexpr unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    // stb would also decode JPEG, BMP, ... behind a .png name; refuse rather than guess.
+    if (bytes.size() < sizeof(signature) || std::memcmp(bytes.data(), signature, sizeof(signature)) != 0)
+        throw std::runtime_error("not a PNG file");
+    if (bytes.size() > std::size_t(INT_MAX)) throw std::runtime_error("file too large");
+
+    const auto* buffer = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int length = int(bytes.size());
+    int width = 0, height = 0, channels = 0;
+    const bool sixteenBit = stbi_is_16_bit_from_memory(buffer, length);
+    void* data = sixteenBit ? static_cast<void*>(stbi_load_16_from_memory(buffer, length, &width, &height, &channels, 3))
+                            : static_cast<void*>(stbi_load_from_memory(buffer, length, &width, &height, &channels, 3));
+    if (!data) {
+        const char* reason = stbi_failure_reason();
+        throw std::runtime_error(std::string("corrupt PNG (") + (reason ? reason : "unknown error") + ")");
+    }
+    std::unique_ptr<void, void (*)(void*)> owner(data, stbi_image_free);
+
+    Image image(width, height);
+    auto pixels = image.pixels();
+    if (sixteenBit) {
+        const auto* codes = static_cast<const std::uint16_t*>(data);
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) pixels[i][c] = srgbToLinear(codes[3 * i + c] / 65535.0f);
+    } else {
+        const auto* codes = static_cast<const std::uint8_t*>(data);
+        for (std::size_t i = 0; i < pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) pixels[i][c] = srgb8ToLinear(codes[3 * i + c]);
+    }
+    return image;
+}
+
+Image decodeExr(const std::vector<char>& bytes, const std::string& path) {
+    MemoryIStream stream(path, bytes);
+    Imf::InputFile file(stream);
+    const Imath::Box2i dataWindow = file.header().dataWindow();
+    const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+    const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+    if (width <= 0 || height <= 0 || width > INT_MAX || height > INT_MAX)
+        throw std::runtime_error("bad data window");
+
+    Image image(static_cast<int>(width), static_cast<int>(height));
+    glm::vec3* first = image.pixels().data();
+    const std::size_t xStride = sizeof(glm::vec3);
+    const std::size_t yStride = xStride * std::size_t(width);
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool grey = !channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B") &&
+                      channels.findChannel("Y");
+
+    // Channels absent from the file are filled with 0; half and uint data convert to float.
+    Imf::FrameBuffer frameBuffer;
+    if (grey) {
+        frameBuffer.insert("Y", Imf::Slice::Make(Imf::FLOAT, &first->x, dataWindow, xStride, yStride));
+    } else {
+        frameBuffer.insert("R", Imf::Slice::Make(Imf::FLOAT, &first->x, dataWindow, xStride, yStride));
+        frameBuffer.insert("G", Imf::Slice::Make(Imf::FLOAT, &first->y, dataWindow, xStride, yStride));
+        frameBuffer.insert("B", Imf::Slice::Make(Imf::FLOAT, &first->z, dataWindow, xStride, yStride));
+    }
+    file.setFrameBuffer(frameBuffer);
+    file.readPixels(dataWindow.min.y, dataWindow.max.y);
+
+    if (grey)
+        for (glm::vec3& p : image.pixels()) p = glm::vec3(p.x);
+    return image;
+}
+
+}  // namespace
+
+ImageFormat imageFormatFromPath(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".png") return ImageFormat::Png;
+    if (extension == ".exr") return ImageFormat::Exr;
+    if (extension.empty()) throw Error(path + ": no image extension (expected .png or .exr)");
+    throw Error(path + ": unknown image extension '" + extension + "' (expected .png or .exr)");
+}
+
+void writeImage(const Image& image, const std::string& path) {
+    const ImageFormat format = imageFormatFromPath(path);
+    if (image.empty()) throw Error("cannot write " + path + ": image is empty");
+    try {
+        const std::vector<char> bytes = format == ImageFormat::Png ? encodePng(image) : encodeExr(image, path);
+        writeFileAtomically(path, bytes);
+    } catch (const std::exception& e) {
+        throw Error("cannot write " + path + ": " + oneLine(e.what()));
+    }
+}
+
+Image readImage(const std::string& path) {
+    const ImageFormat format = imageFormatFromPath(path);
+    try {
+        const std::vector<char> bytes = readFile(path);
+        return format == ImageFormat::Png ? decodePng(bytes) : decodeExr(bytes, path);
+    } catch (const std::exception& e) {
+        throw Error("cannot read " + path + ": " + oneLine(e.what()));
+    }
+}
+
+}  // namespace streak

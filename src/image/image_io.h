@@ -1,0 +1,23 @@
+#pragma once
+
+#include "image/image.h"
+
+#include <string>
+
+namespace streak {
+
+enum class ImageFormat { Png, Exr };
+
+// The format a path's extension names (.png or .exr, any case); throws Error otherwise.
+ImageFormat imageFormatFromPath(const std::string& path);
+
+// Writes PNG as sRGB-encoded 8-bit RGB and EXR as linear 32-bit float RGB. Throws Error naming
+// the path when it cannot be written; a failed write leaves no file behind.
+// (The file is written beside path under a temporary name, then renamed over it.)
+void writeImage(const Image& image, const std::string& path);
+
+// Reads PNG (8-bit sRGB, decoded to linear; alpha ignored) or EXR (linear float). Throws Error
+// naming the path when it is missing, unreadable or of an unknown format.
+Image readImage(const std::string& path);
+
+}  // namespace streak

@@ -1,0 +1,39 @@
+#include "methods/registry.h"
+
+#include "methods/accumulation/accumulation_renderer.h"
+#include "methods/stochastic/stochastic_renderer.h"
+#include "util/error.h"
+
+#include <array>
+
+namespace streak {
+
+namespace {
+
+// One line per method. Registration is explicit (no static self-registration, which the
+// linker may drop along with an unreferenced method library).
+const std::array kMethods{
+    MethodInfo{"accumulation", "reference: averages depth-buffered renders at S stratified shutter times (samples=256)",
+               createAccumulationRenderer},
+    MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
+               createStochasticRenderer},
+};
+
+}  // namespace
+
+std::span<const MethodInfo> registeredMethods() { return kMethods; }
+
+std::unique_ptr<Renderer> createRenderer(std::string_view name, OptionMap options) {
+    for (const MethodInfo& method : kMethods) {
+        if (method.name != name) continue;
+        options.setOwner("method '" + std::string(name) + "'");
+        std::unique_ptr<Renderer> renderer = method.create(options);
+        options.rejectUnknown();
+        return renderer;
+    }
+    std::string known;
+    for (const MethodInfo& method : kMethods) known += (known.empty() ? "" : ", ") + std::string(method.name);
+    throw Error("unknown method '" + std::string(name) + "' (known: " + known + ")");
+}
+
+}  // namespace streak

@@ -1,0 +1,41 @@
+#pragma once
+
+#include "image/image.h"
+#include "scene/scene.h"
+#include "scene/shading.h"
+#include "util/progress.h"
+#include "util/stats.h"
+
+#include <cstdint>
+
+namespace streak {
+
+// Settings every method honours. Method-specific settings (sample counts, budgets) are options
+// the method parses itself at creation (see registry.h).
+struct RenderSettings {
+    int width = 1024;                          ///< pixels
+    int height = 768;                          ///< pixels
+    int aa = 1;                                ///< N: N x N stratified sub-pixel positions, box filter
+    ShadingMode shading = ShadingMode::Phong;
+    std::uint64_t seed = 0;                    ///< for methods that sample randomly
+};
+
+// Where a render reports how it went.
+struct RenderContext {
+    RenderStats& stats;                        ///< phase times and method counters
+    ProgressReporter* progress = nullptr;      ///< may be null
+};
+
+// Renderer is one motion-blur method: it turns a validated scene into a linear-light image of
+// the whole shutter interval [0, 1]. Implementations live in src/methods/<name>/, are created by
+// name through the registry, and use only scene/, raster/, image/ and gpu/: never each other.
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+
+    // Renders `scene` (already validated) at settings.width x settings.height. Throws Error
+    // for settings the method cannot honour.
+    virtual Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) = 0;
+};
+
+}  // namespace streak

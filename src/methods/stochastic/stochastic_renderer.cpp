@@ -1,0 +1,278 @@
+#include "methods/stochastic/stochastic_renderer.h"
+
+#include "raster/clip.h"
+#include "raster/tile_grid.h"
+#include "raster/translucency.h"
+#include "scene/flat_geometry.h"
+#include "util/random.h"
+
+#include <glm/common.hpp>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+namespace streak {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+// Where a triangle is at one sample's time.
+struct SampleHit {
+    const raster::RasterTriangle* triangle = nullptr;  ///< the (sub-)triangle covering the sample
+    raster::EdgeValues edges{};
+    float invW = 0.0f;
+};
+
+// The nearest opaque hit of one sample.
+struct NearestHit {
+    float invW = 0.0f;  ///< 0: nothing
+    std::uint32_t triangle = 0;
+};
+
+struct TileScratch {
+    std::vector<float> time;                  ///< per sample of the tile
+    std::vector<glm::mat4> clipFromWorld;     ///< per sample, when the camera moves
+    std::vector<NearestHit> nearest;
+    std::vector<float> opaqueInvW;
+    std::vector<glm::vec3> color;
+    std::vector<raster::TranslucentFragment> translucent;
+    raster::TriangleSetup setup;              ///< reused: large, and tests are many
+};
+
+class StochasticRenderer final : public Renderer {
+public:
+    explicit StochasticRenderer(int samples) : m_samples(samples) {}
+
+    Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
+        const Frame frame(scene, settings);
+        raster::TileGrid grid(frame.viewport, kTileSize);
+        std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
+        std::vector<raster::PixelBounds> bounds(frame.geometry.triangles().size());
+        tbb::enumerable_thread_specific<TileScratch> scratch;
+        std::atomic<std::int64_t> tests{0};
+
+        for (int j = 0; j < m_samples; ++j) {
+            const float t0 = float(j) / float(m_samples), t1 = float(j + 1) / float(m_samples);
+            {
+                PhaseTimer timer(context.stats, "bounds");
+                tbb::parallel_for(std::size_t(0), bounds.size(), [&](std::size_t i) { bounds[i] = frame.spaceTimeBounds(i, t0, t1); });
+                grid.bin(bounds.size(), [&](std::size_t i) { return bounds[i]; });
+            }
+            PhaseTimer timer(context.stats, "sample+shade");
+            grid.forEachTile([&](int tile) {
+                tests += renderTile(frame, grid, tile, j, bounds, scratch.local(), sum);
+            }, /*includeEmpty=*/true);
+            if (context.progress) context.progress->update(double(j + 1) / m_samples);
+        }
+
+        Image image(settings.width, settings.height);
+        const float norm = 1.0f / float(m_samples);
+        for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm;
+        context.stats.setCounter("time_samples_per_position", m_samples);
+        context.stats.setCounter("samples_per_pixel", double(m_samples) * frame.pattern.count());
+        context.stats.setCounter("triangle_tests", double(tests.load()));
+        return image;
+    }
+
+private:
+    // Everything about the scene that does not change over the render.
+    struct Frame {
+        Frame(const Scene& scene, const RenderSettings& settings)
+            : scene(scene), settings(settings), geometry(scene), viewport{settings.width, settings.height},
+              pattern(raster::SamplePattern::stratified(settings.aa)), aspect(float(settings.width) / float(settings.height)),
+              isCameraStatic(scene.camera.isStatic()) {
+            if (!isCameraStatic) return;
+            // A static camera makes clip space a fixed linear map of world space, so a vertex's
+            // clip position at t is the same combination of its clip-space keys.
+            const glm::mat4 m = scene.camera.clipFromWorld(0.0f, aspect);
+            for (const Mesh& mesh : scene.meshes) {
+                std::vector<glm::vec4>& keys = clipKeys.emplace_back();
+                keys.reserve(mesh.positions.size());
+                for (const glm::vec3& p : mesh.positions) keys.push_back(m * glm::vec4(p, 1.0f));
+            }
+        }
+
+        glm::mat4 clipFromWorldAt(float t) const { return scene.camera.clipFromWorld(t, aspect); }
+
+        // Clip-space corners of triangle i at time t; clipFromWorld is used when the camera moves.
+        std::array<glm::vec4, 3> clipCorners(std::size_t i, float t, const glm::mat4& clipFromWorld) const {
+            const FlatTriangle& tri = geometry.triangles()[i];
+            if (isCameraStatic) {
+                const Mesh& mesh = scene.meshes[tri.mesh];
+                const MotionWeights w = mesh.weightsAt(t);
+                const std::size_t n = mesh.numVertices();
+                const glm::vec4* keys = clipKeys[tri.mesh].data();
+                const std::uint32_t base = geometry.meshVertexOffset(tri.mesh);
+                return {w.apply(keys + (tri.vertices.x - base), n), w.apply(keys + (tri.vertices.y - base), n),
+                        w.apply(keys + (tri.vertices.z - base), n)};
+            }
+            const std::array<glm::vec3, 3> p = geometry.cornersAt(tri, t);
+            return {clipFromWorld * glm::vec4(p[0], 1.0f), clipFromWorld * glm::vec4(p[1], 1.0f), clipFromWorld * glm::vec4(p[2], 1.0f)};
+        }
+
+        // Pixels triangle i may cover at some time in [t0, t1]. Exact for linear segments seen
+        // by a static camera (a moving point's projection then moves on a line); for curved
+        // screen paths (moving camera, Bezier keys) the bounds are padded by the path's
+        // deviation from its chord at mid-interval. Anything reaching the near plane or the
+        // guard band gets the whole image.
+        raster::PixelBounds spaceTimeBounds(std::size_t i, float t0, float t1) const {
+            const Mesh& mesh = scene.meshes[geometry.triangles()[i].mesh];
+            float times[MotionWeights::kMaxKeys + 3];
+            int numTimes = 0;
+            times[numTimes++] = t0;
+            times[numTimes++] = t1;
+            times[numTimes++] = 0.5f * (t0 + t1);
+            if (mesh.interpolation == MotionInterpolation::PiecewiseLinear)
+                for (int k = 1; k + 1 < mesh.numKeys && numTimes < int(std::size(times)); ++k)
+                    if (keyTime(k, mesh.numKeys) > t0 && keyTime(k, mesh.numKeys) < t1) times[numTimes++] = keyTime(k, mesh.numKeys);
+            glm::dvec2 lo(1e300), hi(-1e300);
+            std::array<glm::dvec2, 3> at0{}, at1{}, atMid{};
+            for (int k = 0; k < numTimes; ++k) {
+                const std::array<glm::vec4, 3> clip = clipCorners(i, times[k], isCameraStatic ? glm::mat4(1.0f) : clipFromWorldAt(times[k]));
+                if (raster::needsClipping(clip, scene.camera.zNear)) return {0, 0, viewport.width - 1, viewport.height - 1};
+                for (int v = 0; v < 3; ++v) {
+                    const glm::dvec2 p = raster::rasterFromClip(clip[v], viewport);
+                    lo = glm::min(lo, p), hi = glm::max(hi, p);
+                    if (k == 0) at0[v] = p;
+                    else if (k == 1) at1[v] = p;
+                    else if (k == 2) atMid[v] = p;
+                }
+            }
+            double pad = 1.0;  // fixed-point snapping
+            const bool isCurved = !isCameraStatic || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
+            if (isCurved)
+                for (int v = 0; v < 3; ++v) pad += 2.0 * glm::length(atMid[v] - 0.5 * (at0[v] + at1[v]));
+            raster::PixelBounds b{int(std::floor(lo.x - pad)), int(std::floor(lo.y - pad)), int(std::floor(hi.x + pad)),
+                                  int(std::floor(hi.y + pad))};
+            b.x0 = std::max(b.x0, 0), b.y0 = std::max(b.y0, 0);
+            b.x1 = std::min(b.x1, viewport.width - 1), b.y1 = std::min(b.y1, viewport.height - 1);
+            return b;
+        }
+
+        // Tests triangle i at time t against the sample at fixed-point (X, Y).
+        bool hit(std::size_t i, float t, const glm::mat4& clipFromWorld, std::int64_t X, std::int64_t Y,
+                 raster::TriangleSetup& setup, SampleHit& out) const {
+            const FlatTriangle& tri = geometry.triangles()[i];
+            raster::setupTriangle(clipCorners(i, t, clipFromWorld), std::uint32_t(i), scene.camera.zNear, viewport,
+                                  tri.isDoubleSided ? raster::CullMode::None : raster::CullMode::Back, setup);
+            for (int k = 0; k < setup.count; ++k) {
+                const raster::RasterTriangle& rt = setup.triangles[k];
+                const raster::EdgeValues e = rt.screen.edgesAt(X, Y);
+                if (!rt.screen.isInside(e)) continue;
+                out = {&rt, e, rt.screen.interpolate(e).invW};
+                return true;
+            }
+            return false;
+        }
+
+        ShadedColor shade(const SampleHit& hit, float t) const {
+            const raster::RasterTriangle& rt = *hit.triangle;
+            const FlatTriangle& tri = geometry.triangles()[rt.source];
+            const glm::vec3 bary = rt.sourceBary(rt.screen.interpolate(hit.edges).bary);
+            const raster::PerspectiveSample right = rt.screen.interpolateRight(hit.edges);
+            const raster::PerspectiveSample down = rt.screen.interpolateDown(hit.edges);
+            const glm::vec3 baryRight = right.invW > 0.0f ? rt.sourceBary(right.bary) : bary;
+            const glm::vec3 baryDown = down.invW > 0.0f ? rt.sourceBary(down.bary) : bary;
+            const SurfacePoint point = geometry.surfacePoint(tri, geometry.cornersAt(tri, t), geometry.cornerNormalsAt(tri, t), bary,
+                                                             baryRight, baryDown, rt.screen.isFrontFacing);
+            return shadeSurface(scene, settings.shading, point, scene.camera.positionAt(t));
+        }
+
+        const Scene& scene;
+        const RenderSettings& settings;
+        FlatGeometry geometry;
+        raster::Viewport viewport;
+        raster::SamplePattern pattern;
+        float aspect;
+        bool isCameraStatic;
+        std::vector<std::vector<glm::vec4>> clipKeys;  ///< per mesh, static camera only
+    };
+
+    // All samples of stratum j in one tile: times, visibility, shading, translucency; adds the
+    // tile's mean colour (weighted 1/S) to `sum`. Returns the number of triangle tests.
+    std::int64_t renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, int j,
+                            const std::vector<raster::PixelBounds>& bounds, TileScratch& scratch, std::vector<glm::vec3>& sum) const {
+        const raster::PixelBounds rect = grid.tileBounds(tile);
+        const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
+        const int spp = frame.pattern.count();
+        const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
+        auto sampleIndex = [&](int px, int py, int a) { return (std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + a; };
+
+        scratch.time.resize(numSamples);
+        scratch.clipFromWorld.resize(frame.isCameraStatic ? 0 : numSamples);
+        for (int py = rect.y0; py <= rect.y1; ++py)
+            for (int px = rect.x0; px <= rect.x1; ++px)
+                for (int a = 0; a < spp; ++a) {
+                    const std::size_t i = sampleIndex(px, py, a);
+                    const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(frame.viewport.width) + std::uint64_t(px);
+                    const float jitter = unitFloat(hashValues(frame.settings.seed, pixel, std::uint64_t(a), std::uint64_t(j)));
+                    scratch.time[i] = std::min((float(j) + jitter) / float(m_samples), 1.0f);
+                    if (!frame.isCameraStatic) scratch.clipFromWorld[i] = frame.clipFromWorldAt(scratch.time[i]);
+                }
+        scratch.nearest.assign(numSamples, NearestHit{});
+        scratch.translucent.clear();
+
+        std::int64_t tests = 0;
+        const glm::mat4 identity(1.0f);
+        for (const std::uint32_t index : grid.items(tile)) {
+            const raster::PixelBounds& b = bounds[index];
+            const bool isTranslucent = frame.scene.materials[frame.geometry.triangles()[index].material].isTranslucent();
+            for (int py = std::max(b.y0, rect.y0); py <= std::min(b.y1, rect.y1); ++py)
+                for (int px = std::max(b.x0, rect.x0); px <= std::min(b.x1, rect.x1); ++px)
+                    for (int a = 0; a < spp; ++a) {
+                        const std::size_t i = sampleIndex(px, py, a);
+                        const float t = scratch.time[i];
+                        const std::int64_t X = std::int64_t(px) * raster::kSubpixelScale + frame.pattern.offsets[a].x;
+                        const std::int64_t Y = std::int64_t(py) * raster::kSubpixelScale + frame.pattern.offsets[a].y;
+                        ++tests;
+                        SampleHit hit;
+                        if (!frame.hit(index, t, frame.isCameraStatic ? identity : scratch.clipFromWorld[i], X, Y, scratch.setup, hit))
+                            continue;
+                        if (isTranslucent) {
+                            const ShadedColor c = frame.shade(hit, t);
+                            scratch.translucent.push_back({std::uint32_t(i), hit.invW, c.color, c.alpha});
+                        } else if (hit.invW > scratch.nearest[i].invW) {
+                            scratch.nearest[i] = {hit.invW, index};
+                        }
+                    }
+        }
+
+        scratch.color.resize(numSamples);
+        scratch.opaqueInvW.resize(numSamples);
+        for (int py = rect.y0; py <= rect.y1; ++py)
+            for (int px = rect.x0; px <= rect.x1; ++px)
+                for (int a = 0; a < spp; ++a) {
+                    const std::size_t i = sampleIndex(px, py, a);
+                    const NearestHit& n = scratch.nearest[i];
+                    scratch.opaqueInvW[i] = n.invW;
+                    scratch.color[i] = frame.scene.background;
+                    if (n.invW <= 0.0f) continue;
+                    const float t = scratch.time[i];
+                    const std::int64_t X = std::int64_t(px) * raster::kSubpixelScale + frame.pattern.offsets[a].x;
+                    const std::int64_t Y = std::int64_t(py) * raster::kSubpixelScale + frame.pattern.offsets[a].y;
+                    SampleHit hit;
+                    // The same test again, deterministic, to recover where the winner was hit.
+                    if (frame.hit(n.triangle, t, frame.isCameraStatic ? identity : scratch.clipFromWorld[i], X, Y, scratch.setup, hit))
+                        scratch.color[i] = frame.shade(hit, t).color;
+                }
+        if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color);
+
+        raster::addTileToImage(rect, spp, scratch.color, 1.0f, sum, frame.settings.width);
+        return tests;
+    }
+
+    int m_samples;  ///< time strata S per sub-pixel position
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createStochasticRenderer(OptionMap& options) {
+    return std::make_unique<StochasticRenderer>(options.getInt("samples", 8, 1, 1 << 20));
+}
+
+}  // namespace streak

@@ -1,0 +1,60 @@
+#include "raster/screen_triangle.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace streak::raster {
+
+glm::dvec2 rasterFromClip(const glm::vec4& clip, const Viewport& viewport) {
+    const double invW = 1.0 / double(clip.w);
+    return {(double(clip.x) * invW * 0.5 + 0.5) * viewport.width, (0.5 - double(clip.y) * invW * 0.5) * viewport.height};
+}
+
+PerspectiveSample ScreenTriangle::interpolate(const EdgeValues& e) const {
+    // Screen-space barycentrics l_i = E_i / sum E; perspective correction divides by w per
+    // vertex and renormalizes (attributes / w are affine in screen space).
+    const double q0 = double(e[0]) * invEdgeSum * invW[0];
+    const double q1 = double(e[1]) * invEdgeSum * invW[1];
+    const double q2 = double(e[2]) * invEdgeSum * invW[2];
+    const double sum = q0 + q1 + q2;
+    PerspectiveSample s;
+    s.invW = float(sum);
+    if (sum > 0.0) s.bary = glm::vec3(float(q0 / sum), float(q1 / sum), float(q2 / sum));
+    return s;
+}
+
+bool setupScreenTriangle(const std::array<glm::vec4, 3>& clip, const Viewport& viewport, ScreenTriangle& out) {
+    std::array<std::int64_t, 3> x{}, y{};
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec2 p = rasterFromClip(clip[i], viewport);
+        x[i] = std::llround(p.x * double(kSubpixelScale));
+        y[i] = std::llround(p.y * double(kSubpixelScale));
+        out.invW[i] = 1.0f / clip[i].w;
+    }
+    const std::int64_t area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (area2 == 0) return false;
+    // y points down in raster space, so counter-clockwise in NDC has negative area here.
+    out.isFrontFacing = area2 < 0;
+    const std::int64_t sign = area2 > 0 ? 1 : -1;
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        // E_i(p) = cross(v_k - v_j, p - v_j): equals area2 at v_i, zero on edge jk.
+        out.a[i] = -(y[k] - y[j]) * sign;
+        out.b[i] = (x[k] - x[j]) * sign;
+        out.c[i] = ((y[k] - y[j]) * x[j] - (x[k] - x[j]) * y[j]) * sign;
+        // Top-left rule: the inside lies right of a left edge (a > 0) or below a top edge.
+        const bool isTopLeft = out.a[i] > 0 || (out.a[i] == 0 && out.b[i] > 0);
+        out.bias[i] = isTopLeft ? 0 : -1;
+    }
+    out.invEdgeSum = 1.0 / double(area2 * sign);
+    const std::int64_t minX = std::min({x[0], x[1], x[2]}), maxX = std::max({x[0], x[1], x[2]});
+    const std::int64_t minY = std::min({y[0], y[1], y[2]}), maxY = std::max({y[0], y[1], y[2]});
+    // A sample of pixel p lies in [p, p+1) * scale, so these pixels may hold covered samples.
+    out.bounds.x0 = int(std::max<std::int64_t>(0, minX >> kSubpixelBits));
+    out.bounds.y0 = int(std::max<std::int64_t>(0, minY >> kSubpixelBits));
+    out.bounds.x1 = int(std::min<std::int64_t>(viewport.width - 1, maxX >> kSubpixelBits));
+    out.bounds.y1 = int(std::min<std::int64_t>(viewport.height - 1, maxY >> kSubpixelBits));
+    return true;
+}
+
+}  // namespace streak::raster

@@ -1,0 +1,40 @@
+#include "raster/tile_grid.h"
+
+#include <algorithm>
+
+namespace streak::raster {
+
+TileGrid::TileGrid(const Viewport& viewport, int tileSize)
+    : m_viewport(viewport),
+      m_tileSize(tileSize),
+      m_tilesX((viewport.width + tileSize - 1) / tileSize),
+      m_tilesY((viewport.height + tileSize - 1) / tileSize),
+      m_offsets(std::size_t(m_tilesX) * m_tilesY + 1, 0) {}
+
+PixelBounds TileGrid::tileBounds(int tile) const {
+    const int tx = tile % m_tilesX, ty = tile / m_tilesX;
+    return {tx * m_tileSize, ty * m_tileSize, std::min(m_viewport.width, (tx + 1) * m_tileSize) - 1,
+            std::min(m_viewport.height, (ty + 1) * m_tileSize) - 1};
+}
+
+PixelBounds TileGrid::tileRange(const PixelBounds& p) const {
+    if (p.empty()) return {};
+    PixelBounds t{std::max(0, p.x0) / m_tileSize, std::max(0, p.y0) / m_tileSize,
+                  std::min(m_viewport.width - 1, p.x1) / m_tileSize, std::min(m_viewport.height - 1, p.y1) / m_tileSize};
+    if (p.x1 < 0 || p.y1 < 0 || p.x0 >= m_viewport.width || p.y0 >= m_viewport.height) return {};
+    return t;
+}
+
+void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> sampleColors, float weight,
+                    std::span<glm::vec3> image, int imageWidth) {
+    const float sampleWeight = weight / float(samplesPerPixel);
+    std::size_t i = 0;
+    for (int py = region.y0; py <= region.y1; ++py)
+        for (int px = region.x0; px <= region.x1; ++px) {
+            glm::vec3 pixel(0.0f);
+            for (int s = 0; s < samplesPerPixel; ++s) pixel += sampleColors[i++];
+            image[std::size_t(py) * imageWidth + px] += pixel * sampleWeight;
+        }
+}
+
+}  // namespace streak::raster

@@ -1,0 +1,101 @@
+#pragma once
+
+#include "raster/screen_triangle.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace streak::raster {
+
+// TileGrid splits the image into square tiles and bins items (triangles) by their pixel bounds,
+// keeping submission order within each tile. Tiles are then processed in parallel: each owns its
+// pixels, so per-pixel state needs no locks, and the result does not depend on thread count.
+class TileGrid {
+public:
+    TileGrid(const Viewport& viewport, int tileSize);
+
+    int tileSize() const { return m_tileSize; }
+    int numTiles() const { return m_tilesX * m_tilesY; }
+    // Pixel bounds of tile i, clipped to the image.
+    PixelBounds tileBounds(int tile) const;
+
+    // Bins items 0..count-1 with bounds(i) -> PixelBounds. Replaces the previous binning.
+    template <class BoundsOf>
+    void bin(std::size_t count, BoundsOf&& bounds);
+    std::span<const std::uint32_t> items(int tile) const {
+        return {m_items.data() + m_offsets[tile], m_offsets[tile + 1] - m_offsets[tile]};
+    }
+
+    // Calls f(tile) for every tile with at least one item (or every tile if includeEmpty), in
+    // parallel.
+    template <class F>
+    void forEachTile(F&& f, bool includeEmpty = false) const {
+        tbb::parallel_for(tbb::blocked_range<int>(0, numTiles(), 1), [&](const tbb::blocked_range<int>& r) {
+            for (int tile = r.begin(); tile != r.end(); ++tile)
+                if (includeEmpty || !items(tile).empty()) f(tile);
+        });
+    }
+
+private:
+    PixelBounds tileRange(const PixelBounds& pixels) const;
+
+    Viewport m_viewport;
+    int m_tileSize;
+    int m_tilesX;
+    int m_tilesY;
+    std::vector<std::size_t> m_offsets;  ///< numTiles + 1, into m_items (CSR layout)
+    std::vector<std::uint32_t> m_items;
+};
+
+template <class BoundsOf>
+void TileGrid::bin(std::size_t count, BoundsOf&& bounds) {
+    std::vector<std::size_t>& offsets = m_offsets;
+    offsets.assign(std::size_t(numTiles()) + 1, 0);
+    for (std::size_t i = 0; i < count; ++i) {
+        const PixelBounds t = tileRange(bounds(i));
+        for (int ty = t.y0; ty <= t.y1; ++ty)
+            for (int tx = t.x0; tx <= t.x1; ++tx) ++offsets[std::size_t(ty) * m_tilesX + tx + 1];
+    }
+    for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
+    m_items.resize(offsets.back());
+    std::vector<std::size_t> cursor(offsets.begin(), offsets.end() - 1);
+    for (std::size_t i = 0; i < count; ++i) {
+        const PixelBounds t = tileRange(bounds(i));
+        for (int ty = t.y0; ty <= t.y1; ++ty)
+            for (int tx = t.x0; tx <= t.x1; ++tx) m_items[cursor[std::size_t(ty) * m_tilesX + tx]++] = std::uint32_t(i);
+    }
+}
+
+// Calls onSample(px, py, sampleIndex, edgeValues) for every sample of `pattern` inside `tri`
+// within the pixel rectangle `region` (a tile). The one scan loop of streak: every CPU method
+// rasterizes through it, so the fill rule and edge setup exist once.
+template <class OnSample>
+void scanTriangle(const ScreenTriangle& tri, const PixelBounds& region, const SamplePattern& pattern, OnSample&& onSample) {
+    const int x0 = std::max(region.x0, tri.bounds.x0), x1 = std::min(region.x1, tri.bounds.x1);
+    const int y0 = std::max(region.y0, tri.bounds.y0), y1 = std::min(region.y1, tri.bounds.y1);
+    if (x0 > x1 || y0 > y1) return;
+    const std::int64_t stepX[3] = {tri.a[0] * kSubpixelScale, tri.a[1] * kSubpixelScale, tri.a[2] * kSubpixelScale};
+    for (int py = y0; py <= y1; ++py) {
+        for (int s = 0; s < pattern.count(); ++s) {
+            const glm::i64vec2 offset = pattern.offsets[s];
+            EdgeValues e = tri.edgesAt(std::int64_t(x0) * kSubpixelScale + offset.x, std::int64_t(py) * kSubpixelScale + offset.y);
+            for (int px = x0; px <= x1; ++px) {
+                if (tri.isInside(e)) onSample(px, py, s, e);
+                e[0] += stepX[0], e[1] += stepX[1], e[2] += stepX[2];
+            }
+        }
+    }
+}
+
+// Adds weight times the box-filtered mean of each pixel's samples in `region` to its pixel in
+// `image` (row-major, imageWidth wide). Samples are laid out pixel-major within the region.
+void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> sampleColors, float weight,
+                    std::span<glm::vec3> image, int imageWidth);
+
+}  // namespace streak::raster

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace streak::raster {
+
+// A shaded fragment of a translucent surface at one sample.
+struct TranslucentFragment {
+    std::uint32_t sample = 0;  ///< caller's sample index
+    float invW = 0.0f;         ///< 1 / view depth: larger is nearer
+    glm::vec3 color{0.0f};     ///< linear, not premultiplied
+    float alpha = 0.0f;
+};
+
+// Blends, per sample, the translucent fragments in front of its opaque surface over its colour,
+// front to back: C = sum_i T_i a_i c_i + T_n C_opaque with T_i = prod_{j<i} (1 - a_j).
+// Fragments behind (or at the depth of) the opaque surface are hidden. Sorts `fragments`.
+// Equal depths keep submission order (stable), so results do not depend on threads.
+void compositeTranslucent(std::vector<TranslucentFragment>& fragments, std::span<const float> opaqueInvW,
+                          std::span<glm::vec3> color);
+
+}  // namespace streak::raster

@@ -1,0 +1,49 @@
+#pragma once
+
+#include "scene/motion.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace streak {
+
+// Mesh is a triangle mesh whose vertices move over the shutter as numKeys key poses in world
+// space (instancing, node animation and skinning are baked into the keys by whoever builds the
+// scene). Connectivity, uvs and material are fixed over the shutter. Per-key arrays are stored
+// key-major: positions[k * numVertices() + v].
+struct Mesh {
+    std::string name;
+    int numKeys = 2;
+    MotionInterpolation interpolation = MotionInterpolation::PiecewiseLinear;
+    std::vector<glm::vec3> positions;    ///< world space, numKeys * numVertices
+    std::vector<glm::vec3> normals;      ///< same layout as positions, or empty (flat shading)
+    std::vector<glm::vec2> uvs;          ///< one per vertex, or empty (uv = 0)
+    std::vector<glm::uvec3> triangles;   ///< counter-clockwise front faces
+    std::uint32_t material = 0;          ///< index into Scene::materials
+
+    std::size_t numVertices() const { return numKeys > 0 ? positions.size() / std::size_t(numKeys) : 0; }
+    bool hasNormals() const { return !normals.empty(); }
+    bool hasUvs() const { return !uvs.empty(); }
+    // True when every key equals the first: the mesh does not move.
+    bool isStatic() const;
+
+    std::span<const glm::vec3> keyPositions(int key) const {
+        return {positions.data() + std::size_t(key) * numVertices(), numVertices()};
+    }
+    MotionWeights weightsAt(float t) const { return motionWeights(numKeys, interpolation, t); }
+    glm::vec3 positionAt(std::uint32_t vertex, const MotionWeights& w) const {
+        return w.apply(positions.data() + vertex, numVertices());
+    }
+    glm::vec3 normalAt(std::uint32_t vertex, const MotionWeights& w) const {
+        return w.apply(normals.data() + vertex, numVertices());
+    }
+    glm::vec2 uv(std::uint32_t vertex) const { return hasUvs() ? uvs[vertex] : glm::vec2(0.0f); }
+};
+
+}  // namespace streak

@@ -1,0 +1,39 @@
+#include "scene/motion.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace streak {
+
+MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t) {
+    assert(numKeys >= 2);
+    t = std::clamp(t, 0.0f, 1.0f);
+    MotionWeights w;
+    if (interpolation == MotionInterpolation::PiecewiseLinear || numKeys == 2) {
+        const float x = t * float(numKeys - 1);
+        const int segment = std::min(int(x), numKeys - 2);
+        const float u = x - float(segment);
+        w.first = segment;
+        w.count = 2;
+        w.weights[0] = 1.0f - u;
+        w.weights[1] = u;
+        return w;
+    }
+    assert(numKeys <= MotionWeights::kMaxKeys);
+    // Bernstein basis of degree n = numKeys - 1, built by the de Casteljau recurrence on the
+    // weights themselves: stable for all t in [0,1], unlike powers of t and (1-t).
+    const int n = numKeys - 1;
+    w.first = 0;
+    w.count = numKeys;
+    w.weights[0] = 1.0f;
+    for (int degree = 1; degree <= n; ++degree) {
+        for (int i = degree; i >= 0; --i) {
+            const float fromLeft = i > 0 ? w.weights[i - 1] * t : 0.0f;
+            const float stay = i < degree ? w.weights[i] * (1.0f - t) : 0.0f;
+            w.weights[i] = fromLeft + stay;
+        }
+    }
+    return w;
+}
+
+}  // namespace streak

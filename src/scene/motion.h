@@ -1,0 +1,50 @@
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace streak {
+
+// How a vertex moves between its K key poses over the shutter t in [0,1]. Keys are uniformly
+// spaced in t. K = 2 is linear motion in either mode.
+enum class MotionInterpolation : std::uint8_t {
+    PiecewiseLinear,  ///< K-1 linear segments through the keys
+    Bezier,           ///< one Bezier curve of degree K-1 with the keys as control points
+};
+
+// MotionWeights is the linear combination of key poses that gives a vertex at one time:
+// position(t) = sum_i weights[i] * key[first + i]. Both interpolations are linear in the keys,
+// so the same weights move positions, normals and (since projection is linear in homogeneous
+// coordinates) clip-space positions alike.
+struct MotionWeights {
+    static constexpr int kMaxKeys = 16;  ///< highest Bezier degree + 1 streak evaluates
+
+    int first = 0;  ///< first key used
+    int count = 0;  ///< number of keys used
+    std::array<float, kMaxKeys> weights{};
+
+    template <class T>
+    T apply(const T* keys) const {
+        T sum = keys[first] * weights[0];
+        for (int i = 1; i < count; ++i) sum += keys[first + i] * weights[i];
+        return sum;
+    }
+    // Keys of one vertex stored key-major with a stride (Mesh::positions layout).
+    template <class T>
+    T apply(const T* keys, std::size_t stride) const {
+        T sum = keys[std::size_t(first) * stride] * weights[0];
+        for (int i = 1; i < count; ++i) sum += keys[std::size_t(first + i) * stride] * weights[i];
+        return sum;
+    }
+};
+
+// The weights for numKeys keys at shutter time t (clamped to [0,1]). Precondition: numKeys >= 2,
+// and numKeys <= MotionWeights::kMaxKeys for Bezier.
+MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t);
+
+// Shutter time of key k of numKeys (uniform spacing).
+inline float keyTime(int k, int numKeys) { return float(k) / float(numKeys - 1); }
+
+}  // namespace streak

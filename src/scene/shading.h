@@ -1,0 +1,44 @@
+#pragma once
+
+#include "scene/scene.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace streak {
+
+enum class ShadingMode : std::uint8_t {
+    Unlit,  ///< base colour times texture: the time-averaged albedo
+    Phong,  ///< one directional light plus ambient, as in the papers
+};
+
+// SurfacePoint is what a renderer knows about a visible point at one time: enough to shade it.
+struct SurfacePoint {
+    glm::vec3 position{0.0f};  ///< world space
+    glm::vec3 normal{0.0f};    ///< world space, any length; geometric normal if the mesh has none
+    glm::vec2 uv{0.0f};
+    glm::vec2 duvdx{0.0f};     ///< uv change over one pixel to the right (texture footprint)
+    glm::vec2 duvdy{0.0f};     ///< uv change over one pixel down
+    std::uint32_t material = 0;
+    bool isFrontFacing = true; ///< back faces of double-sided materials are lit from their side
+};
+
+struct ShadedColor {
+    glm::vec3 color{0.0f};  ///< linear, not premultiplied
+    float alpha = 1.0f;     ///< opacity times texture alpha for translucent materials, else 1
+};
+
+// The one shading function every CPU method calls, so methods differ only in visibility.
+ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);
+
+// Albedo and alpha only (base colour times texture), sampled at an explicit level of detail;
+// methods that average texture along a path (motion paths) pick their own lod.
+ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, float lod);
+
+// Phong lighting of an albedo at a point; normal need not be unit length.
+glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::vec3& albedo,
+                     const glm::vec3& position, glm::vec3 normal, bool isFrontFacing, const glm::vec3& eye);
+
+}  // namespace streak

@@ -1,0 +1,129 @@
+#include "scene/texture.h"
+
+#include "image/color.h"
+#include "util/error.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace streak {
+
+namespace {
+
+int wrapCoordinate(int i, int size, WrapMode mode) {
+    switch (mode) {
+    case WrapMode::ClampToEdge:
+        return std::clamp(i, 0, size - 1);
+    case WrapMode::MirroredRepeat: {
+        const int period = 2 * size;
+        int m = i % period;
+        if (m < 0) m += period;
+        return m < size ? m : period - 1 - m;
+    }
+    case WrapMode::Repeat:
+    default: {
+        int m = i % size;
+        return m < 0 ? m + size : m;
+    }
+    }
+}
+
+}  // namespace
+
+Texture Texture::fromSrgb8(int width, int height, std::span<const std::uint8_t> rgba, WrapMode wrapU,
+                           WrapMode wrapV) {
+    if (width <= 0 || height <= 0 || rgba.size() != std::size_t(width) * height * 4)
+        throw Error("texture data does not match its size " + std::to_string(width) + "x" +
+                    std::to_string(height));
+    std::vector<glm::vec4> texels(std::size_t(width) * height);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        texels[i] = glm::vec4(srgb8ToLinear(rgba[4 * i]), srgb8ToLinear(rgba[4 * i + 1]),
+                              srgb8ToLinear(rgba[4 * i + 2]), float(rgba[4 * i + 3]) / 255.0f);
+    }
+    return fromLinear(width, height, std::move(texels), wrapU, wrapV);
+}
+
+Texture Texture::fromLinear(int width, int height, std::vector<glm::vec4> texels, WrapMode wrapU,
+                            WrapMode wrapV) {
+    if (width <= 0 || height <= 0 || texels.size() != std::size_t(width) * height)
+        throw Error("texture data does not match its size " + std::to_string(width) + "x" +
+                    std::to_string(height));
+    Texture texture;
+    texture.m_wrapU = wrapU;
+    texture.m_wrapV = wrapV;
+    texture.m_levels.push_back({width, height, std::move(texels)});
+    texture.buildMipChain();
+    return texture;
+}
+
+void Texture::buildMipChain() {
+    // Each level averages the 2x2 (or, for an odd size, up to 3x3-weighted) block under it; a
+    // box filter in linear light, so averaging a mip texel equals averaging the texels it covers.
+    while (m_levels.back().width > 1 || m_levels.back().height > 1) {
+        const Level& src = m_levels.back();
+        Level dst;
+        dst.width = std::max(1, src.width / 2);
+        dst.height = std::max(1, src.height / 2);
+        dst.texels.resize(std::size_t(dst.width) * dst.height);
+        const float sx = float(src.width) / float(dst.width);
+        const float sy = float(src.height) / float(dst.height);
+        for (int y = 0; y < dst.height; ++y) {
+            for (int x = 0; x < dst.width; ++x) {
+                // Area-weighted average of the source texels under [x*sx,(x+1)*sx) x [...].
+                const float x0 = float(x) * sx, x1 = x0 + sx;
+                const float y0 = float(y) * sy, y1 = y0 + sy;
+                glm::vec4 sum(0.0f);
+                float weightSum = 0.0f;
+                for (int j = int(y0); j < int(std::ceil(y1)); ++j) {
+                    const float wy = std::min(y1, float(j + 1)) - std::max(y0, float(j));
+                    for (int i = int(x0); i < int(std::ceil(x1)); ++i) {
+                        const float wx = std::min(x1, float(i + 1)) - std::max(x0, float(i));
+                        sum += src.texels[std::size_t(j) * src.width + i] * (wx * wy);
+                        weightSum += wx * wy;
+                    }
+                }
+                dst.texels[std::size_t(y) * dst.width + x] = sum / weightSum;
+            }
+        }
+        m_levels.push_back(std::move(dst));
+    }
+}
+
+glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
+    const Level& l = m_levels[std::clamp(level, 0, numLevels() - 1)];
+    const float x = uv.x * float(l.width) - 0.5f;
+    const float y = uv.y * float(l.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const int x0 = int(fx), y0 = int(fy);
+    const int xa = wrapCoordinate(x0, l.width, m_wrapU), xb = wrapCoordinate(x0 + 1, l.width, m_wrapU);
+    const int ya = wrapCoordinate(y0, l.height, m_wrapV), yb = wrapCoordinate(y0 + 1, l.height, m_wrapV);
+    auto at = [&](int i, int j) { return l.texels[std::size_t(j) * l.width + i]; };
+    const glm::vec4 top = glm::mix(at(xa, ya), at(xb, ya), ax);
+    const glm::vec4 bottom = glm::mix(at(xa, yb), at(xb, yb), ax);
+    return glm::mix(top, bottom, ay);
+}
+
+glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const {
+    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
+    const float maxLod = float(numLevels() - 1);
+    lod = std::clamp(std::isfinite(lod) ? lod : maxLod, 0.0f, maxLod);
+    const int level = int(lod);
+    const float frac = lod - float(level);
+    const glm::vec4 a = sampleBilinear(uv, level);
+    if (frac == 0.0f || level + 1 >= numLevels()) return a;
+    return glm::mix(a, sampleBilinear(uv, level + 1), frac);
+}
+
+float Texture::lodFromFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
+    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const float lengthSquared = std::max(glm::dot(duvdx * size, duvdx * size), glm::dot(duvdy * size, duvdy * size));
+    if (!(lengthSquared > 0.0f)) return 0.0f;
+    return 0.5f * std::log2(lengthSquared);
+}
+
+}  // namespace streak

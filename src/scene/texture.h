@@ -1,0 +1,55 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace streak {
+
+// How uv outside [0,1] maps onto a texture axis (the glTF sampler modes).
+enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+// Texture is a linear-light RGBA texture with its full mip chain, built once at load time.
+// uv (0,0) is the top-left corner of the first row (glTF convention); texel centres sit at
+// half-integer texel coordinates. Sampling is bilinear within a level and linear between levels.
+class Texture {
+public:
+    // From 8-bit sRGB-encoded RGBA (row-major, top row first): colour is decoded to linear,
+    // alpha is kept linear. Throws Error if the sizes do not match.
+    static Texture fromSrgb8(int width, int height, std::span<const std::uint8_t> rgba,
+                             WrapMode wrapU = WrapMode::Repeat, WrapMode wrapV = WrapMode::Repeat);
+    static Texture fromLinear(int width, int height, std::vector<glm::vec4> texels,
+                              WrapMode wrapU = WrapMode::Repeat, WrapMode wrapV = WrapMode::Repeat);
+
+    int width(int level = 0) const { return m_levels[level].width; }
+    int height(int level = 0) const { return m_levels[level].height; }
+    int numLevels() const { return int(m_levels.size()); }
+    const glm::vec4& texel(int level, int x, int y) const {
+        const Level& l = m_levels[level];
+        return l.texels[std::size_t(y) * l.width + x];
+    }
+
+    glm::vec4 sampleBilinear(const glm::vec2& uv, int level) const;
+    // Trilinear: lod 0 is the full-resolution level; clamped to the chain.
+    glm::vec4 sample(const glm::vec2& uv, float lod) const;
+    // The level of detail for a uv footprint (the uv change over one pixel step in x and y):
+    // log2 of the longer footprint axis in texels, as GPUs compute it.
+    float lodFromFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const;
+
+private:
+    struct Level {
+        int width = 0;
+        int height = 0;
+        std::vector<glm::vec4> texels;
+    };
+    void buildMipChain();
+
+    std::vector<Level> m_levels;  ///< level 0 is full resolution, the last is 1x1
+    WrapMode m_wrapU = WrapMode::Repeat;
+    WrapMode m_wrapV = WrapMode::Repeat;
+};
+
+}  // namespace streak

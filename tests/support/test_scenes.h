@@ -1,0 +1,69 @@
+#pragma once
+
+#include "scene/scene.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace streak::test {
+
+// Tiny hand-made scenes for tests: a static camera at the origin looking down -z with a 90
+// degree vertical field of view, so a point at depth d maps to raster coordinates by
+// worldXAt / worldYAt below, and positions can be stated in pixels.
+struct PixelCamera {
+    int width;
+    int height;
+    float depth;  ///< distance of the plane where positions are given
+
+    float aspect() const { return float(width) / float(height); }
+    // World x at raster x (pixels from the left edge) on the plane z = -depth.
+    float worldX(float rasterX) const { return (2.0f * rasterX / float(width) - 1.0f) * depth * aspect(); }
+    // World y at raster y (pixels from the top edge).
+    float worldY(float rasterY) const { return (1.0f - 2.0f * rasterY / float(height)) * depth; }
+    glm::vec3 at(float rasterX, float rasterY) const { return {worldX(rasterX), worldY(rasterY), -depth}; }
+};
+
+inline Scene emptyScene(glm::vec3 background = glm::vec3(0.0f)) {
+    Scene scene;
+    scene.name = "test";
+    scene.camera.verticalFov = 1.5707963f;  // 90 degrees
+    scene.camera.open = CameraPose::lookAt(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+    scene.camera.close = scene.camera.open;
+    scene.background = background;
+    return scene;
+}
+
+inline std::uint32_t addMaterial(Scene& scene, glm::vec3 color, float opacity = 1.0f) {
+    Material m;
+    m.baseColor = color;
+    m.opacity = opacity;
+    m.doubleSided = true;
+    scene.materials.push_back(m);
+    return std::uint32_t(scene.materials.size() - 1);
+}
+
+// A quad with corners given at t = 0 and t = 1 (linear motion), counter-clockwise as seen by
+// the camera when given in order top-left, bottom-left, bottom-right, top-right.
+inline void addMovingQuad(Scene& scene, std::uint32_t material, const std::array<glm::vec3, 4>& open,
+                          const std::array<glm::vec3, 4>& close) {
+    Mesh mesh;
+    mesh.material = material;
+    mesh.numKeys = 2;
+    for (const glm::vec3& p : open) mesh.positions.push_back(p);
+    for (const glm::vec3& p : close) mesh.positions.push_back(p);
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.meshes.push_back(mesh);
+}
+
+// An axis-aligned quad of raster rectangle [x0,x1] x [y0,y1] at the camera's depth, moved by
+// (dx, dy) pixels over the shutter.
+inline void addPixelQuad(Scene& scene, const PixelCamera& cam, std::uint32_t material, float x0, float y0, float x1, float y1,
+                         float dx = 0.0f, float dy = 0.0f) {
+    addMovingQuad(scene, material, {cam.at(x0, y0), cam.at(x0, y1), cam.at(x1, y1), cam.at(x1, y0)},
+                  {cam.at(x0 + dx, y0 + dy), cam.at(x0 + dx, y1 + dy), cam.at(x1 + dx, y1 + dy), cam.at(x1 + dx, y0 + dy)});
+}
+
+}  // namespace streak::test
