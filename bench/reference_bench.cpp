@@ -8,6 +8,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+
 namespace {
 
 void renderOnce(benchmark::State& state, const std::string& method, const std::string& spec, int samples, int width, int height) {
@@ -19,14 +21,16 @@ void renderOnce(benchmark::State& state, const std::string& method, const std::s
     streak::RenderSettings settings;
     settings.width = width;
     settings.height = height;
+    double seconds = 0.0;
     for (auto _ : state) {
         streak::RenderStats stats;
         streak::RenderContext context{stats};
+        const auto start = std::chrono::steady_clock::now();
         benchmark::DoNotOptimize(renderer->render(scene, settings, context));
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     state.counters["triangles"] = double(scene.numTriangles());
-    state.counters["ms_per_time_sample"] =
-        benchmark::Counter(double(samples) * 1e-3, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["ms_per_time_sample"] = seconds * 1e3 / (double(state.iterations()) * samples);
 }
 
 void BM_AccumulationCubes(benchmark::State& state) {
