@@ -1,0 +1,69 @@
+#include "raster/edge_equation.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace streak::raster {
+
+namespace {
+
+glm::dvec3 xyw(const glm::vec4& c) { return {double(c.x), double(c.y), double(c.w)}; }
+
+}  // namespace
+
+HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc) {
+    const glm::dvec3 p(ndc, 1.0);
+    const glm::dvec3 c0 = xyw(clip[0]), c1 = xyw(clip[1]), c2 = xyw(clip[2]);
+    const glm::dvec3 e(glm::dot(glm::cross(c1, c2), p), glm::dot(glm::cross(c2, c0), p), glm::dot(glm::cross(c0, c1), p));
+    const double sum = e.x + e.y + e.z;
+    HomogeneousSample s;
+    // det(c0, c1, c2) = w0 w1 w2 * (twice the NDC area): its sign is the orientation.
+    s.isFrontFacing = glm::dot(c0, glm::cross(c1, c2)) > 0.0;
+    if (sum == 0.0 || !std::isfinite(sum)) return s;
+    s.bary = e / sum;
+    s.viewDepth = s.bary.x * c0.z + s.bary.y * c1.z + s.bary.z * c2.z;
+    s.isValid = true;
+    return s;
+}
+
+Quadratic movingEdgeFunction(const glm::vec4& a0, const glm::vec4& a1, const glm::vec4& b0, const glm::vec4& b1,
+                             const glm::dvec2& ndc) {
+    const glm::dvec3 p(ndc, 1.0);
+    const glm::dvec3 a = xyw(a0), da = xyw(a1) - a, b = xyw(b0), db = xyw(b1) - b;
+    // (a + u da) x (b + u db) = a x b + u (a x db + da x b) + u^2 (da x db)
+    return {glm::dot(glm::cross(da, db), p), glm::dot(glm::cross(a, db) + glm::cross(da, b), p), glm::dot(glm::cross(a, b), p)};
+}
+
+int solveQuadratic(const Quadratic& q, double roots[2]) {
+    const double scale = std::max({std::abs(q.a), std::abs(q.b), std::abs(q.c)});
+    if (scale == 0.0) return 0;
+    // Treat a as zero when it is negligible next to b and c: the linear root is then the exact
+    // one, where the quadratic formula would lose it to cancellation.
+    if (std::abs(q.a) <= 1e-12 * scale) {
+        if (q.b == 0.0) return 0;
+        roots[0] = -q.c / q.b;
+        return 1;
+    }
+    const double discriminant = q.b * q.b - 4.0 * q.a * q.c;
+    if (discriminant < 0.0) return 0;
+    if (discriminant == 0.0) {
+        roots[0] = -q.b / (2.0 * q.a);
+        return 1;
+    }
+    const double s = -0.5 * (q.b + std::copysign(std::sqrt(discriminant), q.b));
+    double r0 = s / q.a;
+    double r1 = s != 0.0 ? q.c / s : -r0;
+    if (r0 > r1) std::swap(r0, r1);
+    roots[0] = r0;
+    roots[1] = r1;
+    return 2;
+}
+
+glm::dvec2 ndcFromRaster(double rasterX, double rasterY, int width, int height) {
+    return {2.0 * rasterX / width - 1.0, 1.0 - 2.0 * rasterY / height};
+}
+
+}  // namespace streak::raster

@@ -1,0 +1,46 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+
+namespace streak::raster {
+
+// Exact per-sample geometry in homogeneous 2D (Olano & Greer 1997): a triangle's corners as
+// clip-space (x, y, w) need no division, so a sample can be evaluated at any time without
+// snapping or clipping. The edge function of corners j, k at normalized device point p is
+// E(p) = (c_j x c_k) . (p.x, p.y, 1); the three E, normalized to sum 1, are the
+// perspective-correct barycentrics of p (the corner opposite the edge gets its E).
+
+// Barycentrics, view depth and orientation of a triangle at one NDC point.
+struct HomogeneousSample {
+    glm::dvec3 bary{0.0};    ///< perspective-correct; sum 1
+    double viewDepth = 0.0;  ///< interpolated clip w (> 0 in front of the camera)
+    bool isValid = false;    ///< false for a triangle seen edge-on (all E sum to 0)
+    bool isFrontFacing = true;  ///< counter-clockwise in NDC (with all w > 0)
+};
+
+HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc);
+
+// A quadratic q(u) = a u^2 + b u + c.
+struct Quadratic {
+    double a = 0.0, b = 0.0, c = 0.0;
+    double operator()(double u) const { return (a * u + b) * u + c; }
+};
+
+// Gribel et al. 2010: with corners moving linearly in clip space, c(u) = c0 + u (c1 - c0), the
+// edge function of a moving edge at a fixed sample is quadratic in u:
+// E(u) = ((a0 + u da) x (b0 + u db)) . p.
+Quadratic movingEdgeFunction(const glm::vec4& a0, const glm::vec4& a1, const glm::vec4& b0, const glm::vec4& b1,
+                             const glm::dvec2& ndc);
+
+// Real roots of q in ascending order (0, 1 or 2 of them; a double root counts once). Uses the
+// cancellation-free form (Numerical Recipes 5.6) and handles a = 0 (linear) and a = b = 0.
+int solveQuadratic(const Quadratic& q, double roots[2]);
+
+// NDC position of a fixed-point raster sample (x right, y up).
+glm::dvec2 ndcFromRaster(double rasterX, double rasterY, int width, int height);
+
+}  // namespace streak::raster
