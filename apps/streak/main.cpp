@@ -98,6 +98,10 @@ struct RenderArgs {
     int width = 1024;
     int height = 768;
     std::optional<int> samples;
+    std::optional<int> maxFragments;
+    std::optional<int> maxIntervals;
+    std::optional<int> maskBits;
+    std::optional<int> textureSamples;
     int aa = 1;
     std::string shading = "phong";
     std::optional<std::string> background;
@@ -125,7 +129,12 @@ int runRender(const RenderArgs& args) {
     else throw Error("--shading must be phong or unlit, got '" + args.shading + "'");
 
     OptionMap methodOptions;
-    if (args.samples) methodOptions.set("samples", std::to_string(*args.samples));
+    // Method-specific flags become the method's options; a method rejects those it does not take.
+    const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
+        {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
+        {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}};
+    for (const auto& [key, value] : methodFlags)
+        if (value->has_value()) methodOptions.set(key, std::to_string(**value));
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
     checkWritable(args.output, true);
     if (!args.stats.empty()) checkWritable(args.stats, false);
@@ -217,6 +226,10 @@ int run(int argc, char** argv) {
     render->add_option("--width", renderArgs.width, "image width in pixels")->capture_default_str();
     render->add_option("--height", renderArgs.height, "image height in pixels")->capture_default_str();
     render->add_option("--samples", renderArgs.samples, "time samples (accumulation: 256 shutter times; stochastic: 8 per pixel)");
+    render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (150)");
+    render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90)");
+    render->add_option("--mask-bits", renderArgs.maskBits, "motion-path: time slices per mask, 32|64|128|256 (128)");
+    render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: texture samples per interval (16)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");

@@ -1,0 +1,126 @@
+// The motion-path renderer against closed forms and the accumulation reference.
+
+#include "image/metrics.h"
+#include "methods/registry.h"
+#include "scene/builtin_scenes.h"
+#include "support/test_scenes.h"
+
+#include <gtest/gtest.h>
+
+namespace streak {
+
+namespace {
+
+Image render(const std::string& method, const Scene& scene, int width, int height, OptionMap options, RenderStats* stats = nullptr,
+             ShadingMode shading = ShadingMode::Unlit, int aa = 1) {
+    std::unique_ptr<Renderer> renderer = createRenderer(method, options);
+    RenderSettings settings;
+    settings.width = width, settings.height = height, settings.shading = shading, settings.aa = aa;
+    RenderStats local;
+    RenderContext context{stats ? *stats : local};
+    return renderer->render(scene, settings, context);
+}
+
+OptionMap withOption(const std::string& key, const std::string& value) {
+    OptionMap o;
+    o.set(key, value);
+    return o;
+}
+
+}  // namespace
+
+TEST(MotionPathRenderer, TranslatingQuadCoversTheAnalyticFraction) {
+    // As for the references: the quad's right edge sweeps x from 2 to 14; pixel p is covered
+    // for (14 - (p + 1/2)) / 12 of the shutter, within one time slice (1/mask-bits).
+    const test::PixelCamera cam{16, 4, 3.0f};
+    Scene scene = test::emptyScene();
+    test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(1.0f)), -20.0f, -1.0f, 2.0f, 5.0f, 12.0f, 0.0f);
+    validateScene(scene);
+    for (int bits : {32, 128, 256}) {
+        const Image image = render("motion-path", scene, 16, 4, withOption("mask-bits", std::to_string(bits)));
+        for (int px = 0; px < 16; ++px) {
+            const float expected = std::clamp((14.0f - (float(px) + 0.5f)) / 12.0f, 0.0f, 1.0f);
+            EXPECT_NEAR(image.at(px, 2).x, expected, 1.0f / bits + 1e-5f) << "bits " << bits << " px " << px;
+        }
+    }
+}
+
+TEST(MotionPathRenderer, CrossingQuadsSwapOrderMidShutter) {
+    // Red moves from depth 2 to 4, green from 4 to 2: their intervals cross at t = 1/2 and are
+    // split there; each pixel is half red, half green.
+    Scene scene = test::emptyScene();
+    const test::PixelCamera c2{8, 8, 2.0f}, c4{8, 8, 4.0f};
+    const std::uint32_t red = test::addMaterial(scene, {1, 0, 0}), green = test::addMaterial(scene, {0, 1, 0});
+    auto corners = [](const test::PixelCamera& c) { return std::array<glm::vec3, 4>{c.at(-4, -4), c.at(-4, 12), c.at(12, 12), c.at(12, -4)}; };
+    test::addMovingQuad(scene, red, corners(c2), corners(c4));
+    test::addMovingQuad(scene, green, corners(c4), corners(c2));
+    validateScene(scene);
+    RenderStats stats;
+    const Image image = render("motion-path", scene, 8, 8, OptionMap(), &stats);
+    EXPECT_NEAR(image.at(3, 3).x, 0.5f, 1.0f / 128 + 1e-5f);
+    EXPECT_NEAR(image.at(3, 3).y, 0.5f, 1.0f / 128 + 1e-5f);
+    EXPECT_GT(stats.counter("interval_splits"), 0.0);
+    // Without the depth-time sort the nearer-at-start red wins the whole shutter.
+    const Image unsorted = render("motion-path", scene, 8, 8, withOption("sort", "0"));
+    EXPECT_GT(unsorted.at(3, 3).x, 0.9f);
+}
+
+TEST(MotionPathRenderer, TwistingTriangleIsSeenTwice) {
+    // builtin:twist flips its triangle over: near the flip axis a pixel sees it before and
+    // after the flip, two intervals of one path; the image agrees with the reference.
+    Scene scene = makeBuiltinScene("twist", OptionMap());
+    validateScene(scene);
+    RenderStats stats;
+    const Image mp = render("motion-path", scene, 128, 96, OptionMap(), &stats, ShadingMode::Phong);
+    const Image ref = render("accumulation", scene, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong);
+    EXPECT_GT(stats.counter("intervals_per_sample_max"), 1.0);
+    EXPECT_GT(psnr(mp, ref), 40.0);
+}
+
+TEST(MotionPathRenderer, StaticSceneMatchesTheReference) {
+    Scene scene = makeBuiltinScene("rotating-cube", OptionMap());
+    for (Mesh& mesh : scene.meshes)
+        for (std::size_t i = mesh.numVertices(); i < mesh.positions.size(); ++i) {
+            mesh.positions[i] = mesh.positions[i % mesh.numVertices()];
+            mesh.normals[i] = mesh.normals[i % mesh.numVertices()];
+        }
+    validateScene(scene);
+    const Image mp = render("motion-path", scene, 128, 96, OptionMap(), nullptr, ShadingMode::Phong, 2);
+    const Image ref = render("accumulation", scene, 128, 96, withOption("samples", "1"), nullptr, ShadingMode::Phong, 2);
+    EXPECT_GT(psnr(mp, ref), 50.0);
+}
+
+TEST(MotionPathRenderer, AgreesWithTheReferenceOnMovingScenes) {
+    // 40 dB is the figure the issue asks of every scene; these are small renders of the
+    // hardest ones (rotation with K = 2 keys, translucency, thin fast bars).
+    for (const char* name : {"rotating-cube", "translucent", "fence"}) {
+        SCOPED_TRACE(name);
+        Scene scene = makeBuiltinScene(name, OptionMap());
+        validateScene(scene);
+        const Image mp = render("motion-path", scene, 128, 96, OptionMap(), nullptr, ShadingMode::Phong);
+        const Image ref = render("accumulation", scene, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong);
+        EXPECT_GT(psnr(mp, ref), 40.0);
+    }
+}
+
+TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
+    // Ten static quads stacked in depth over every pixel: with a budget of 4 paths per sample
+    // every sample overflows, the nearest are kept (the front quad's colour wins) and the
+    // overflow is counted.
+    Scene scene = test::emptyScene();
+    for (int i = 0; i < 10; ++i) {
+        const test::PixelCamera cam{8, 8, 2.0f + float(i)};
+        test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(float(i) / 10.0f)), -2, -2, 10, 10);
+    }
+    validateScene(scene);
+    RenderStats stats;
+    OptionMap options;
+    options.set("max-fragments", "4");
+    options.set("max-intervals", "3");
+    const Image image = render("motion-path", scene, 8, 8, options, &stats);
+    EXPECT_FLOAT_EQ(image.at(4, 4).x, 0.0f);
+    EXPECT_EQ(stats.counter("fragment_overflow_samples"), 64.0);
+    EXPECT_EQ(stats.counter("intervals_per_sample_max"), 3.0);
+}
+
+}  // namespace streak
