@@ -1,6 +1,6 @@
-// Google Benchmark programs for the reference renderers: the cost of one shutter time
-// (accumulation) and of one time stratum (stochastic) on the built-in scenes, so later methods
-// can be compared at equal quality. No assertions: figures go to docs/BENCHMARKS.md.
+// Google Benchmark programs: whole renders of the built-in scenes by the motion-path method and
+// the references, with the references' cost per shutter time (accumulation) or time stratum
+// (stochastic). No assertions: figures go to docs/BENCHMARKS.md.
 
 #include "methods/registry.h"
 #include "scene/builtin_scenes.h"
@@ -16,7 +16,7 @@ void renderOnce(benchmark::State& state, const std::string& method, const std::s
     streak::Scene scene = streak::loadScene(spec);
     streak::validateScene(scene);
     streak::OptionMap options;
-    options.set("samples", std::to_string(samples));
+    if (samples > 0) options.set("samples", std::to_string(samples));
     auto renderer = streak::createRenderer(method, options);
     streak::RenderSettings settings;
     settings.width = width;
@@ -30,7 +30,7 @@ void renderOnce(benchmark::State& state, const std::string& method, const std::s
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     state.counters["triangles"] = double(scene.numTriangles());
-    state.counters["ms_per_time_sample"] = seconds * 1e3 / (double(state.iterations()) * samples);
+    if (samples > 0) state.counters["ms_per_time_sample"] = seconds * 1e3 / (double(state.iterations()) * samples);
 }
 
 void BM_AccumulationCubes(benchmark::State& state) {
@@ -42,6 +42,11 @@ void BM_StochasticCubes(benchmark::State& state) {
     renderOnce(state, "stochastic", "builtin:cubes?n=" + std::to_string(state.range(0)), 2, 1024, 768);
 }
 BENCHMARK(BM_StochasticCubes)->Arg(1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_MotionPathCubes(benchmark::State& state) {
+    renderOnce(state, "motion-path", "builtin:cubes?n=" + std::to_string(state.range(0)), 0, 1024, 768);
+}
+BENCHMARK(BM_MotionPathCubes)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_AccumulationRotatingCube(benchmark::State& state) {
     renderOnce(state, "accumulation", "builtin:rotating-cube", 64, 1024, 768);

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Quality against time for the two reference renderers.
+"""Quality against time: motion paths and the two reference renderers.
 
 For each scene, renders the converged reference (accumulation, 3000 shutter times, as in
-Hong & Oh), then accumulation and stochastic at increasing sample counts. It records the render
+Hong & Oh), then motion-path, and accumulation and stochastic at increasing sample counts. It records the render
 time (the "render" phase in --stats) and the PSNR/SSIM against the reference, as reported by
 `streak compare`. Prints a Markdown table for docs/BENCHMARKS.md.
 
@@ -19,7 +19,8 @@ import tempfile
 
 def render(streak, scene, method, samples, size, out, stats):
     w, h = size.split("x")
-    subprocess.run([streak, "render", scene, "-m", method, "--samples", str(samples), "--width", w, "--height", h,
+    extra = ["--samples", str(samples)] if samples else []
+    subprocess.run([streak, "render", scene, "-m", method, *extra, "--width", w, "--height", h,
                     "-o", out, "--stats", stats], check=True)
     with open(stats) as f:
         return json.load(f)["time_ms"]["render"]
@@ -55,6 +56,10 @@ def main():
             ref = os.path.join(tmp, name + "-ref.png")
             ref_ms = render(args.streak, scene, "accumulation", args.reference_samples, args.size, ref, stats)
             print(f"| {name} | accumulation (reference) | {args.reference_samples} | {ref_ms:.0f} | – | – |", flush=True)
+            out = os.path.join(tmp, f"{name}-motion-path.png")
+            ms = render(args.streak, scene, "motion-path", None, args.size, out, stats)
+            psnr, ssim = compare(args.streak, out, ref)
+            print(f"| {name} | motion-path | – | {ms:.0f} | {psnr:.2f} | {ssim:.4f} |", flush=True)
             for method, counts in sweeps.items():
                 for s in counts:
                     out = os.path.join(tmp, f"{name}-{method}-{s}.png")
