@@ -118,12 +118,10 @@ public:
         }
         std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
         tbb::enumerable_thread_specific<TileScratch> scratch;
-        std::atomic<int> tilesDone{0};
         {
             PhaseTimer timer(context.stats, "tiles");
             grid.forEachTile([&](int tile) {
                 renderTile(frame, grid, tile, scratch.local(), image);
-                ++tilesDone;
             }, /*includeEmpty=*/true);
         }
         if (context.progress) context.progress->update(1.0);
