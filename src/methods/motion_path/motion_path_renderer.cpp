@@ -267,7 +267,9 @@ private:
                     if (roots[i] > 0.0 && roots[i] < 1.0) breaks[n++] = roots[i];
             }
             breaks[n++] = 1.0;
-            std::sort(breaks.begin(), breaks.begin() + n);
+            // At most 8 breaks: insertion sort.
+            for (int i = 1; i < n; ++i)
+                for (int j = i; j > 0 && breaks[j] < breaks[j - 1]; --j) std::swap(breaks[j], breaks[j - 1]);
             bool wasInside = false;
             for (int i = 0; i + 1 < n; ++i) {
                 if (!(breaks[i + 1] > breaks[i])) continue;
