@@ -38,6 +38,15 @@ ClippedPolygon clipTriangle(const std::array<glm::vec4, 3>& clip, float zNear);
 
 enum class CullMode : std::uint8_t { None, Back };
 
+// Source-triangle barycentrics at a sample and one pixel right and down of it: the texture
+// footprint. Past the triangle's horizon a neighbour has no barycentrics; it then takes the
+// sample's own (a zero footprint).
+struct SourceFootprint {
+    glm::vec3 bary{0.0f};
+    glm::vec3 right{0.0f};
+    glm::vec3 down{0.0f};
+};
+
 // RasterTriangle is a screen triangle made from (part of) a source triangle.
 struct RasterTriangle {
     ScreenTriangle screen;
@@ -46,6 +55,14 @@ struct RasterTriangle {
     std::uint32_t source = 0;         ///< the caller's index of the source triangle
 
     glm::vec3 sourceBary(const glm::vec3& localBary) const { return isClipped ? sourceFromLocal * localBary : localBary; }
+    SourceFootprint sourceFootprint(const EdgeValues& e) const {
+        SourceFootprint f;
+        f.bary = sourceBary(screen.interpolate(e).bary);
+        const PerspectiveSample right = screen.interpolateRight(e), down = screen.interpolateDown(e);
+        f.right = right.invW > 0.0f ? sourceBary(right.bary) : f.bary;
+        f.down = down.invW > 0.0f ? sourceBary(down.bary) : f.bary;
+        return f;
+    }
 };
 
 // The screen triangles of one source triangle: one, or a fan of up to six after clipping.

@@ -126,19 +126,13 @@ private:
         };
         auto shade = [&](const raster::RasterTriangle& rt, const raster::EdgeValues& e) {
             const FlatTriangle& tri = geometry.triangles()[rt.source];
-            const raster::PerspectiveSample here = rt.screen.interpolate(e);
-            const glm::vec3 bary = rt.sourceBary(here.bary);
-            // Past the triangle's horizon the neighbour has no footprint: use this point's.
-            const raster::PerspectiveSample right = rt.screen.interpolateRight(e);
-            const raster::PerspectiveSample down = rt.screen.interpolateDown(e);
-            const glm::vec3 baryRight = right.invW > 0.0f ? rt.sourceBary(right.bary) : bary;
-            const glm::vec3 baryDown = down.invW > 0.0f ? rt.sourceBary(down.bary) : bary;
+            const raster::SourceFootprint f = rt.sourceFootprint(e);
             const std::array<glm::vec3, 3> corners{slice.positions[tri.vertices.x], slice.positions[tri.vertices.y],
                                                    slice.positions[tri.vertices.z]};
             const std::array<glm::vec3, 3> normals{slice.normals[tri.vertices.x], slice.normals[tri.vertices.y],
                                                    slice.normals[tri.vertices.z]};
             const SurfacePoint point =
-                geometry.surfacePoint(tri, corners, normals, bary, baryRight, baryDown, rt.screen.isFrontFacing);
+                geometry.surfacePoint(tri, corners, normals, f.bary, f.right, f.down, rt.screen.isFrontFacing);
             return shadeSurface(scene, settings.shading, point, slice.eye);
         };
 

@@ -173,13 +173,9 @@ private:
         ShadedColor shade(const SampleHit& hit, float t) const {
             const raster::RasterTriangle& rt = *hit.triangle;
             const FlatTriangle& tri = geometry.triangles()[rt.source];
-            const glm::vec3 bary = rt.sourceBary(rt.screen.interpolate(hit.edges).bary);
-            const raster::PerspectiveSample right = rt.screen.interpolateRight(hit.edges);
-            const raster::PerspectiveSample down = rt.screen.interpolateDown(hit.edges);
-            const glm::vec3 baryRight = right.invW > 0.0f ? rt.sourceBary(right.bary) : bary;
-            const glm::vec3 baryDown = down.invW > 0.0f ? rt.sourceBary(down.bary) : bary;
-            const SurfacePoint point = geometry.surfacePoint(tri, geometry.cornersAt(tri, t), geometry.cornerNormalsAt(tri, t), bary,
-                                                             baryRight, baryDown, rt.screen.isFrontFacing);
+            const raster::SourceFootprint f = rt.sourceFootprint(hit.edges);
+            const SurfacePoint point = geometry.surfacePoint(tri, geometry.cornersAt(tri, t), geometry.cornerNormalsAt(tri, t), f.bary,
+                                                             f.right, f.down, rt.screen.isFrontFacing);
             return shadeSurface(scene, settings.shading, point, scene.camera.positionAt(t));
         }
 
