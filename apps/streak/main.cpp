@@ -102,6 +102,8 @@ struct RenderArgs {
     std::optional<int> maxIntervals;
     std::optional<int> maskBits;
     std::optional<int> textureSamples;
+    std::optional<int> sort;
+    std::optional<int> curveSegments;
     int aa = 1;
     std::string shading = "phong";
     std::optional<std::string> background;
@@ -132,7 +134,8 @@ int runRender(const RenderArgs& args) {
     // Method-specific flags become the method's options; a method rejects those it does not take.
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
-        {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}};
+        {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}, {"sort", &args.sort},
+        {"curve-segments", &args.curveSegments}};
     for (const auto& [key, value] : methodFlags)
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
@@ -229,7 +232,10 @@ int run(int argc, char** argv) {
     render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (150)");
     render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90)");
     render->add_option("--mask-bits", renderArgs.maskBits, "motion-path: time slices per mask, 32|64|128|256 (128)");
-    render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: texture samples per interval (16)");
+    render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: at most this many texture taps per interval (16)");
+    render->add_option("--sort", renderArgs.sort, "motion-path: depth-time sort of intervals, 1 (on) or 0 (nearest-first only) (1)");
+    render->add_option("--curve-segments", renderArgs.curveSegments,
+                       "motion-path: linear segments per key segment for curved screen motion (moving camera, Bezier keys) (4)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");

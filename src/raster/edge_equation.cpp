@@ -20,7 +20,6 @@ HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, cons
     const glm::dvec3 e(glm::dot(glm::cross(c1, c2), p), glm::dot(glm::cross(c2, c0), p), glm::dot(glm::cross(c0, c1), p));
     const double sum = e.x + e.y + e.z;
     HomogeneousSample s;
-    // det(c0, c1, c2) = w0 w1 w2 * (twice the NDC area): its sign is the orientation.
     s.isFrontFacing = glm::dot(c0, glm::cross(c1, c2)) > 0.0;
     if (sum == 0.0 || !std::isfinite(sum)) return s;
     s.bary = e / sum;
@@ -29,12 +28,20 @@ HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, cons
     return s;
 }
 
+bool isFrontFacing(const std::array<glm::vec4, 3>& clip) {
+    return glm::dot(xyw(clip[0]), glm::cross(xyw(clip[1]), xyw(clip[2]))) > 0.0;
+}
+
+MovingEdge movingEdge(const glm::dvec3& p0, const glm::dvec3& dp, const glm::dvec3& q0, const glm::dvec3& dq) {
+    // (p0 + u dp) x (q0 + u dq) = p0 x q0 + u (p0 x dq + dp x q0) + u^2 (dp x dq)
+    return {glm::cross(dp, dq), glm::cross(p0, dq) + glm::cross(dp, q0), glm::cross(p0, q0)};
+}
+
 Quadratic movingEdgeFunction(const glm::vec4& a0, const glm::vec4& a1, const glm::vec4& b0, const glm::vec4& b1,
                              const glm::dvec2& ndc) {
     const glm::dvec3 p(ndc, 1.0);
-    const glm::dvec3 a = xyw(a0), da = xyw(a1) - a, b = xyw(b0), db = xyw(b1) - b;
-    // (a + u da) x (b + u db) = a x b + u (a x db + da x b) + u^2 (da x db)
-    return {glm::dot(glm::cross(da, db), p), glm::dot(glm::cross(a, db) + glm::cross(da, b), p), glm::dot(glm::cross(a, b), p)};
+    const MovingEdge e = movingEdge(xyw(a0), xyw(a1) - xyw(a0), xyw(b0), xyw(b1) - xyw(b0));
+    return {glm::dot(e.a, p), glm::dot(e.b, p), glm::dot(e.c, p)};
 }
 
 int solveQuadratic(const Quadratic& q, double roots[2]) {

@@ -24,11 +24,22 @@ struct HomogeneousSample {
 
 HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc);
 
+// Orientation alone: det(c0, c1, c2) in (x, y, w) is w0 w1 w2 times twice the NDC area, so with
+// all w > 0 its sign says counter-clockwise (front facing).
+bool isFrontFacing(const std::array<glm::vec4, 3>& clip);
+
 // A quadratic q(u) = a u^2 + b u + c.
 struct Quadratic {
     double a = 0.0, b = 0.0, c = 0.0;
     double operator()(double u) const { return (a * u + b) * u + c; }
 };
+
+// The edge function of a moving edge as a vector quadratic: (a u^2 + b u + c) . p for
+// p = (x, y, 1), from its corners' (x, y, w) at u = 0 and their change to u = 1.
+struct MovingEdge {
+    glm::dvec3 a{0.0}, b{0.0}, c{0.0};
+};
+MovingEdge movingEdge(const glm::dvec3& p0, const glm::dvec3& dp, const glm::dvec3& q0, const glm::dvec3& dq);
 
 // Gribel et al. 2010: with corners moving linearly in clip space, c(u) = c0 + u (c1 - c0), the
 // edge function of a moving edge at a fixed sample is quadratic in u:

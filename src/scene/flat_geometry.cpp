@@ -66,13 +66,18 @@ std::array<glm::vec3, 3> FlatGeometry::cornerNormalsAt(const FlatTriangle& tri, 
             mesh.normalAt(tri.vertices.z - base, w)};
 }
 
+std::array<glm::vec2, 3> FlatGeometry::cornerUvs(const FlatTriangle& tri) const {
+    const Mesh& mesh = meshOf(tri);
+    const std::uint32_t base = m_meshVertexOffset[tri.mesh];
+    return {mesh.uv(tri.vertices.x - base), mesh.uv(tri.vertices.y - base), mesh.uv(tri.vertices.z - base)};
+}
+
 SurfacePoint FlatGeometry::surfacePoint(const FlatTriangle& tri, const std::array<glm::vec3, 3>& corners,
                                         const std::array<glm::vec3, 3>& cornerNormals, const glm::vec3& bary,
                                         const glm::vec3& baryRight, const glm::vec3& baryDown, bool isFrontFacing) const {
     const Mesh& mesh = meshOf(tri);
-    const std::uint32_t base = m_meshVertexOffset[tri.mesh];
-    const glm::vec2 uv0 = mesh.uv(tri.vertices.x - base), uv1 = mesh.uv(tri.vertices.y - base), uv2 = mesh.uv(tri.vertices.z - base);
-    auto uvAt = [&](const glm::vec3& b) { return b.x * uv0 + b.y * uv1 + b.z * uv2; };
+    const std::array<glm::vec2, 3> uv = cornerUvs(tri);
+    auto uvAt = [&](const glm::vec3& b) { return b.x * uv[0] + b.y * uv[1] + b.z * uv[2]; };
     SurfacePoint p;
     p.position = bary.x * corners[0] + bary.y * corners[1] + bary.z * corners[2];
     p.normal = bary.x * cornerNormals[0] + bary.y * cornerNormals[1] + bary.z * cornerNormals[2];

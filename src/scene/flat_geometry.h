@@ -40,6 +40,7 @@ public:
     std::array<glm::vec3, 3> cornersAt(const FlatTriangle& tri, float t) const;
     std::array<glm::vec3, 3> cornerNormalsAt(const FlatTriangle& tri, float t) const;
 
+    std::array<glm::vec2, 3> cornerUvs(const FlatTriangle& tri) const;
     // What shading needs at a point with barycentrics `bary` (and the barycentrics one pixel
     // right and down, for the texture footprint) given the triangle's corners at that time.
     SurfacePoint surfacePoint(const FlatTriangle& tri, const std::array<glm::vec3, 3>& corners,

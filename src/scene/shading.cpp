@@ -20,22 +20,28 @@ ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, cons
     return result;
 }
 
-glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::vec3& albedo,
-                     const glm::vec3& position, glm::vec3 normal, bool isFrontFacing, const glm::vec3& eye) {
+PhongTerms phongTerms(const Scene& scene, const Material& material, const glm::vec3& position, glm::vec3 normal,
+                      bool isFrontFacing, const glm::vec3& eye) {
+    const DirectionalLight& light = scene.light;
     const float length = glm::length(normal);
-    if (!(length > 0.0f)) return albedo * scene.light.ambient;
+    if (!(length > 0.0f)) return {light.ambient, glm::vec3(0.0f)};
     normal /= length;
     if (!isFrontFacing) normal = -normal;
-    const DirectionalLight& light = scene.light;
     const float diffuse = std::max(0.0f, glm::dot(normal, light.toLight));
-    glm::vec3 color = albedo * (light.ambient + light.color * diffuse);
+    PhongTerms terms{light.ambient + light.color * diffuse, glm::vec3(0.0f)};
     if (diffuse > 0.0f && material.specular > 0.0f) {
         const glm::vec3 toEye = glm::normalize(eye - position);
         const glm::vec3 reflected = glm::reflect(-light.toLight, normal);
         const float highlight = std::pow(std::max(0.0f, glm::dot(reflected, toEye)), material.shininess);
-        color += light.color * (material.specular * highlight);
+        terms.specular = light.color * (material.specular * highlight);
     }
-    return color;
+    return terms;
+}
+
+glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::vec3& albedo,
+                     const glm::vec3& position, glm::vec3 normal, bool isFrontFacing, const glm::vec3& eye) {
+    const PhongTerms terms = phongTerms(scene, material, position, normal, isFrontFacing, eye);
+    return albedo * terms.diffuse + terms.specular;
 }
 
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye) {

@@ -37,6 +37,15 @@ ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoin
 // methods that average texture along a path (motion paths) pick their own lod.
 ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, float lod);
 
+// Phong lighting split by what multiplies the albedo: colour = albedo * diffuse + specular.
+// Methods that average lighting and texture at different rates combine the two themselves.
+struct PhongTerms {
+    glm::vec3 diffuse{0.0f};   ///< ambient plus diffuse, times the albedo
+    glm::vec3 specular{0.0f};  ///< added as is
+};
+PhongTerms phongTerms(const Scene& scene, const Material& material, const glm::vec3& position, glm::vec3 normal,
+                      bool isFrontFacing, const glm::vec3& eye);
+
 // Phong lighting of an albedo at a point; normal need not be unit length.
 glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::vec3& albedo,
                      const glm::vec3& position, glm::vec3 normal, bool isFrontFacing, const glm::vec3& eye);

@@ -95,17 +95,23 @@ void Texture::buildMipChain() {
 
 glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
     const Level& l = m_levels[std::clamp(level, 0, numLevels() - 1)];
-    const float x = uv.x * float(l.width) - 0.5f;
-    const float y = uv.y * float(l.height) - 0.5f;
+    // Far-out coordinates are clamped so the texel index stays an int; wrapping cannot tell
+    // them apart at float precision anyway.
+    constexpr float kLimit = float(1 << 24);
+    const float x = std::clamp(uv.x * float(l.width) - 0.5f, -kLimit, kLimit);
+    const float y = std::clamp(uv.y * float(l.height) - 0.5f, -kLimit, kLimit);
     const float fx = std::floor(x), fy = std::floor(y);
     const float ax = x - fx, ay = y - fy;
     const int x0 = int(fx), y0 = int(fy);
-    const int xa = wrapCoordinate(x0, l.width, m_wrapU), xb = wrapCoordinate(x0 + 1, l.width, m_wrapU);
-    const int ya = wrapCoordinate(y0, l.height, m_wrapV), yb = wrapCoordinate(y0 + 1, l.height, m_wrapV);
-    auto at = [&](int i, int j) { return l.texels[std::size_t(j) * l.width + i]; };
-    const glm::vec4 top = glm::mix(at(xa, ya), at(xb, ya), ax);
-    const glm::vec4 bottom = glm::mix(at(xa, yb), at(xb, yb), ax);
-    return glm::mix(top, bottom, ay);
+    // Interior texels (the common case) need no wrapping.
+    int xa = x0, xb = x0 + 1, ya = y0, yb = y0 + 1;
+    if (x0 < 0 || xb >= l.width) xa = wrapCoordinate(x0, l.width, m_wrapU), xb = wrapCoordinate(x0 + 1, l.width, m_wrapU);
+    if (y0 < 0 || yb >= l.height) ya = wrapCoordinate(y0, l.height, m_wrapV), yb = wrapCoordinate(y0 + 1, l.height, m_wrapV);
+    const glm::vec4* rowA = l.texels.data() + std::size_t(ya) * l.width;
+    const glm::vec4* rowB = l.texels.data() + std::size_t(yb) * l.width;
+    const glm::vec4 top = rowA[xa] + (rowA[xb] - rowA[xa]) * ax;
+    const glm::vec4 bottom = rowB[xa] + (rowB[xb] - rowB[xa]) * ax;
+    return top + (bottom - top) * ay;
 }
 
 glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const {
@@ -115,7 +121,7 @@ glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const {
     const int level = int(lod);
     const float frac = lod - float(level);
     const glm::vec4 a = sampleBilinear(uv, level);
-    if (frac == 0.0f || level + 1 >= numLevels()) return a;
+    if (frac < 1.0f / 512.0f || level + 1 >= numLevels()) return a;
     return glm::mix(a, sampleBilinear(uv, level + 1), frac);
 }
 

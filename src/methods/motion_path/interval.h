@@ -17,7 +17,7 @@ struct Interval {
     float depth1 = 0.0f;        ///< view depth at t1
     glm::vec3 color{0.0f};      ///< linear, mean over the span
     float alpha = 1.0f;         ///< 1: opaque
-    std::uint32_t source = 0;   ///< the triangle it came from
+    std::uint32_t source = 0;   ///< what it came from (the renderer's index: a motion path)
 
     float minDepth() const { return depth0 < depth1 ? depth0 : depth1; }
     float maxDepth() const { return depth0 < depth1 ? depth1 : depth0; }

@@ -3,10 +3,13 @@
 #include "methods/motion_path/interval.h"
 #include "methods/motion_path/motion_path.h"
 #include "methods/motion_path/resolve.h"
+#include "methods/motion_path/time_mask.h"
 #include "raster/clip.h"
 #include "raster/edge_equation.h"
+#include "raster/moving_triangle.h"
 #include "raster/tile_grid.h"
 #include "scene/flat_geometry.h"
+#include "scene/span_shading.h"
 #include "util/error.h"
 
 #include <glm/geometric.hpp>
@@ -19,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace streak {
@@ -36,6 +40,7 @@ struct Options {
     int maskBits = 128;
     int textureSamples = 16;
     bool sortIntervals = true;
+    int curveSegments = 4;
 };
 
 // One triangle over one linear segment of the shutter: its corners at both ends. Everything
@@ -60,15 +65,32 @@ struct Fragment {
 // Counters of one thread, summed at the end.
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
-                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0;
-    double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0;
+                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, shadedIntervals = 0;
+    double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
 
+// A visible piece of a triangle at one sample, and its share of the sample.
+struct VisibleSpan {
+    std::uint32_t triangle = 0;
+    float t0 = 0.0f, t1 = 0.0f;
+    float weight = 0.0f;
+    bool isWhole = false;  ///< visible all through [t0, t1]: may merge with its neighbours
+};
+
+// A tile works in phases over all its samples (rasterize, build, sort, resolve, shade), each
+// phase leaving per-sample runs in one tile-wide array: runs[i]..runs[i + 1] belong to sample i.
 struct TileScratch {
     std::vector<Fragment> fragments;
     std::vector<Fragment> bySample;
-    std::vector<std::uint32_t> offsets;
-    std::vector<Interval> intervals;
+    std::vector<std::uint32_t> fragmentRuns;
+    std::vector<Interval> built;
+    std::vector<std::uint32_t> builtRuns;
+    std::vector<Interval> sorted;
+    std::vector<std::uint32_t> sortedRuns;
+    std::vector<float> weights;            ///< per sorted interval: its share of the sample
+    std::vector<float> backgroundWeights;  ///< per sample
+    std::vector<Interval> work;            ///< one sample's list while it is sorted
+    std::vector<VisibleSpan> spans;        ///< one sample's visible opaque pieces
     std::vector<float> events;
     std::vector<glm::vec3> color;
     Counters counters;
@@ -132,18 +154,20 @@ public:
             total.fragments += c.fragments, total.fragmentOverflowSamples += c.fragmentOverflowSamples;
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
-            total.culledIntervals += c.culledIntervals;
+            total.culledIntervals += c.culledIntervals, total.shadedIntervals += c.shadedIntervals;
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
+            total.shadeSeconds += c.shadeSeconds;
         }
         // Tile work runs on all threads at once: split the tiles' wall time by thread time.
         const double tileWall = context.stats.time("tiles");
-        const double threadTime = total.rasterSeconds + total.buildSeconds + total.sortSeconds + total.resolveSeconds;
+        const double threadTime = total.rasterSeconds + total.buildSeconds + total.sortSeconds + total.resolveSeconds + total.shadeSeconds;
         const double scale = threadTime > 0.0 ? tileWall / threadTime : 0.0;
         context.stats.addTime("rasterize", total.rasterSeconds * scale);
         context.stats.addTime("build intervals", total.buildSeconds * scale);
         context.stats.addTime("sort", total.sortSeconds * scale);
         context.stats.addTime("resolve", total.resolveSeconds * scale);
+        context.stats.addTime("shade", total.shadeSeconds * scale);
 
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         RenderStats& stats = context.stats;
@@ -161,10 +185,12 @@ public:
         stats.setCounter("interval_splits", double(total.splits));
         stats.setCounter("sort_cycles", double(total.cycles));
         stats.setCounter("backface_intervals_culled", double(total.culledIntervals));
+        stats.setCounter("shaded_spans", double(total.shadedIntervals));
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
         stats.setCounter("texture_samples", m_options.textureSamples);
+        stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
         Image result(settings.width, settings.height);
         std::copy(image.begin(), image.end(), result.pixels().begin());
@@ -179,14 +205,15 @@ private:
               pattern(raster::SamplePattern::stratified(settings.aa)), aspect(float(settings.width) / float(settings.height)) {
             // Linear keys under a static camera are linear in clip space: one path per key
             // segment is exact. Curved screen motion (Bezier keys, a moving camera) is followed
-            // by four linear segments per key segment.
+            // by curveSegments linear segments per key segment.
             int maxKeys = 2;
             bool isCurved = !scene.camera.isStatic();
             for (const Mesh& mesh : scene.meshes) {
                 maxKeys = std::max(maxKeys, mesh.numKeys);
                 isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
             }
-            numSegments = (maxKeys - 1) * (isCurved ? 4 : 1);
+            numSegments = (maxKeys - 1) * (isCurved ? options.curveSegments : 1);
+            spanShading.maxTextureTaps = options.textureSamples;
         }
 
         void generate() {
@@ -243,24 +270,20 @@ private:
             numBackFacingPaths = culledPaths.load();
         }
 
-        // Corners of a path at time t on its linear clip-space segment.
-        std::array<glm::vec4, 3> clipAt(const SegmentPath& p, float t) const {
-            const float u = p.t1 > p.t0 ? (t - p.t0) / (p.t1 - p.t0) : 0.0f;
-            return {glm::mix(p.clip0[0], p.clip1[0], u), glm::mix(p.clip0[1], p.clip1[1], u), glm::mix(p.clip0[2], p.clip1[2], u)};
-        }
+        // A shutter time as the path's segment parameter u in [0, 1].
+        static double localTime(const SegmentPath& p, float t) { return p.t1 > p.t0 ? (double(t) - p.t0) / (double(p.t1) - p.t0) : 0.0; }
 
         // The exact time spans in which the sample lies inside the path's triangle (Gribel et
         // al. 2010): between consecutive roots of the three moving edge equations and the
         // segment ends, the sample is inside where all three edge functions share a sign and the
         // triangle's plane lies beyond the near plane. Appends start/end pairs to `events`.
-        void exactSpans(const SegmentPath& p, const glm::dvec2& ndc, std::vector<float>& events) const {
+        void exactSpans(const SegmentPath& p, const raster::MovingTriangle& moving, const glm::dvec2& ndc, std::vector<float>& events) const {
             std::array<double, 8> breaks;
             int n = 0;
             breaks[n++] = 0.0;
             std::array<raster::Quadratic, 3> q;
             for (int e = 0; e < 3; ++e) {
-                const int f = (e + 1) % 3;
-                q[e] = raster::movingEdgeFunction(p.clip0[e], p.clip1[e], p.clip0[f], p.clip1[f], ndc);
+                q[e] = moving.edgeFunction(e, ndc);
                 double roots[2];
                 const int m = raster::solveQuadratic(q[e], roots);
                 for (int i = 0; i < m; ++i)
@@ -279,7 +302,7 @@ private:
                 // Depth on the triangle is a convex combination of its corners' depths, so only a
                 // path reaching nearer than the near plane needs the depth check.
                 if (inside && !(p.nearness > 0.0f && p.nearness <= 1.0f / scene.camera.zNear))
-                    inside = raster::evaluateHomogeneous(clipAt(p, float(p.t0 + u * (p.t1 - p.t0))), ndc).viewDepth >= scene.camera.zNear;
+                    inside = moving.sample(u, ndc).viewDepth >= scene.camera.zNear;
                 if (inside != wasInside) events.push_back(float(p.t0 + breaks[i] * (p.t1 - p.t0)));
                 wasInside = inside;
             }
@@ -293,110 +316,138 @@ private:
         raster::Viewport viewport;
         raster::SamplePattern pattern;
         float aspect;
+        SpanShadingSettings spanShading;
         int numSegments = 1;
         std::vector<SegmentPath> paths;            ///< triangle-major, numSegments per triangle
         std::vector<raster::RasterTriangle> faces; ///< source = index into paths
         std::int64_t numBackFacingPaths = 0;       ///< skipped: back-facing all through their segment
     };
 
-    // The shaded mean colour of a path over [t0, t1] at a sample, or false when the triangle
-    // shows its back there (single-sided) or cannot be evaluated.
-    bool shadeInterval(const Frame& frame, const SegmentPath& p, float t0, float t1, const glm::dvec2& ndc, Interval& out) const {
-        const Scene& scene = frame.scene;
-        const FlatTriangle& tri = frame.geometry.triangles()[p.triangle];
-        const Material& material = scene.materials[tri.material];
-        const float tm = 0.5f * (t0 + t1);
-        const raster::HomogeneousSample s0 = raster::evaluateHomogeneous(frame.clipAt(p, t0), ndc);
-        const raster::HomogeneousSample s1 = raster::evaluateHomogeneous(frame.clipAt(p, t1), ndc);
-        const raster::HomogeneousSample sm = raster::evaluateHomogeneous(frame.clipAt(p, tm), ndc);
-        if (!s0.isValid || !s1.isValid || !sm.isValid) return false;
-        if (!tri.isDoubleSided && !sm.isFrontFacing) return false;
+    // A triangle under one sample at any time of the shutter: exact barycentrics from the
+    // moving edge equations of the segment holding that time, world position and normal from
+    // the key poses. The segment last used is kept, since taps come in time order.
+    class TriangleSurfacePoint final : public MovingSurfacePoint {
+    public:
+        TriangleSurfacePoint(const Frame& frame, std::uint32_t triangle, const glm::dvec2& ndc)
+            : m_frame(frame), m_triangle(triangle), m_ndc(ndc), m_flat(frame.geometry.triangles()[triangle]),
+              m_uv(frame.geometry.cornerUvs(m_flat)) {}
 
-        const Mesh& mesh = frame.geometry.meshOf(tri);
-        const std::uint32_t base = frame.geometry.meshVertexOffset(tri.mesh);
-        const std::array<glm::vec2, 3> uv{mesh.uv(tri.vertices.x - base), mesh.uv(tri.vertices.y - base), mesh.uv(tri.vertices.z - base)};
-        auto at = [](const auto& corners, const glm::dvec3& b) { return float(b.x) * corners[0] + float(b.y) * corners[1] + float(b.z) * corners[2]; };
-        const glm::vec2 uv0 = at(uv, s0.bary), uv1 = at(uv, s1.bary);
-
-        // Albedo: the mean of k texture samples along the interval (section 4.4). The paper
-        // samples the straight uv path uv0 -> uv1. Where the true path bends (rotation, a
-        // triangle turning over), the uv at mid-interval lies off that line; if it is more
-        // than half a texel off, the k samples take the exact uv at k times instead. The level
-        // is the coarser of the path's (length / k) and the pixel's own footprint: the paper's
-        // alone aliases minified textures on slow intervals.
-        glm::vec3 albedo = material.baseColor;
-        float textureAlpha = 1.0f;
-        if (material.baseColorTexture >= 0) {
-            const Texture& texture = scene.textures[std::size_t(material.baseColorTexture)];
-            const int k = frame.options.textureSamples;
-            const glm::vec2 size(float(texture.width()), float(texture.height()));
-            const glm::vec2 uvMid = at(uv, sm.bary);
-            const bool isCurved = glm::length((uvMid - 0.5f * (uv0 + uv1)) * size) > 0.5f;
-            const glm::vec2 half0 = glm::abs(uvMid - uv0) * size, half1 = glm::abs(uv1 - uvMid) * size;
-            const float pathTexels = isCurved ? std::max(half0.x + half1.x, half0.y + half1.y)
-                                              : std::max(std::abs(uv1.x - uv0.x) * size.x, std::abs(uv1.y - uv0.y) * size.y);
-            float lod = std::log2(std::max(pathTexels / float(k), 1e-8f));
-            const glm::dvec2 pixel(2.0 / frame.viewport.width, 2.0 / frame.viewport.height);
-            const std::array<glm::vec4, 3> clipMid = frame.clipAt(p, tm);
-            const raster::HomogeneousSample right = raster::evaluateHomogeneous(clipMid, ndc + glm::dvec2(pixel.x, 0.0));
-            const raster::HomogeneousSample down = raster::evaluateHomogeneous(clipMid, ndc - glm::dvec2(0.0, pixel.y));
-            if (right.isValid && down.isValid && right.viewDepth > 0.0 && down.viewDepth > 0.0)
-                lod = std::max(lod, texture.lodFromFootprint(at(uv, right.bary) - uvMid, at(uv, down.bary) - uvMid));
-            // Samples closer than a texel of the chosen level add nothing: a slow interval on a
-            // minified texture needs fewer than k.
-            const int count = std::clamp(int(std::ceil(pathTexels / std::exp2(lod))), 1, k);
-            glm::vec4 sum(0.0f);
-            for (int i = 0; i < count; ++i) {
-                const float f = (float(i) + 0.5f) / float(count);
-                glm::vec2 uvAt = glm::mix(uv0, uv1, f);
-                if (isCurved) {
-                    const raster::HomogeneousSample s = raster::evaluateHomogeneous(frame.clipAt(p, t0 + f * (t1 - t0)), ndc);
-                    if (s.isValid) uvAt = at(uv, s.bary);
-                }
-                sum += texture.sample(uvAt, lod);
+        bool at(float t, bool withFootprint, SurfacePoint& out) const override {
+            const SegmentPath& path = select(t);
+            const double u = Frame::localTime(path, t);
+            const raster::HomogeneousSample s = m_moving->sample(u, m_ndc);
+            if (!s.isValid) return false;
+            glm::dvec3 right = s.bary, down = s.bary;
+            if (withFootprint) {
+                const glm::dvec2 pixel(2.0 / m_frame.viewport.width, 2.0 / m_frame.viewport.height);
+                const raster::HomogeneousSample r = m_moving->sample(u, m_ndc + glm::dvec2(pixel.x, 0.0));
+                const raster::HomogeneousSample d = m_moving->sample(u, m_ndc - glm::dvec2(0.0, pixel.y));
+                // Past the horizon the neighbours say nothing about the footprint.
+                if (r.isValid && d.isValid && r.viewDepth > 0.0 && d.viewDepth > 0.0) right = r.bary, down = d.bary;
             }
-            sum /= float(count);
-            albedo *= glm::vec3(sum);
-            textureAlpha = sum.w;
+            std::array<glm::vec3, 3> world, normal;
+            const float uf = float(u);
+            for (int i = 0; i < 3; ++i) {
+                world[i] = glm::mix(path.world0[i], path.world1[i], uf);
+                normal[i] = glm::mix(path.normal0[i], path.normal1[i], uf);
+            }
+            out = m_frame.geometry.surfacePoint(m_flat, world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
+            return true;
         }
-        glm::vec3 color = albedo;
-        if (frame.settings.shading == ShadingMode::Phong) {
-            // Lighting by Simpson's rule over the interval: ends weighted 1, middle 4.
-            auto lightAt = [&](const raster::HomogeneousSample& s, float t, bool isFrontFacing) {
-                const float u = p.t1 > p.t0 ? (t - p.t0) / (p.t1 - p.t0) : 0.0f;
-                std::array<glm::vec3, 3> world, normal;
+
+        // uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).
+        bool uvAt(float t, glm::vec2& uv) const override {
+            const double u = Frame::localTime(select(t), t);
+            const double denominator = m_uvDenominator(u);
+            if (denominator == 0.0 || !std::isfinite(denominator)) return false;
+            uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
+            return true;
+        }
+
+    private:
+        const SegmentPath& select(float t) const {
+            const int numSegments = m_frame.numSegments;
+            const int segment = std::clamp(int(t * float(numSegments)), 0, numSegments - 1);
+            const SegmentPath& path = m_frame.paths[std::size_t(m_triangle) * numSegments + segment];
+            if (segment != m_segment) {
+                m_segment = segment;
+                m_moving.emplace(path.clip0, path.clip1);
+                // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
+                m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
+                m_uvDenominator = {};
                 for (int i = 0; i < 3; ++i) {
-                    world[i] = glm::mix(p.world0[i], p.world1[i], u);
-                    normal[i] = glm::mix(p.normal0[i], p.normal1[i], u);
+                    const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
+                    const glm::dvec2 uv(m_uv[i]);
+                    m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
+                    m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
                 }
-                glm::vec3 n = at(normal, s.bary);
-                if (!mesh.hasNormals()) n = glm::cross(world[1] - world[0], world[2] - world[0]);
-                return lightPhong(scene, material, albedo, at(world, s.bary), n, isFrontFacing, scene.camera.positionAt(t));
-            };
-            color = (lightAt(s0, t0, sm.isFrontFacing) + 4.0f * lightAt(sm, tm, sm.isFrontFacing) + lightAt(s1, t1, sm.isFrontFacing)) / 6.0f;
+            }
+            return path;
         }
-        out.t0 = t0, out.t1 = t1;
-        out.depth0 = float(s0.viewDepth), out.depth1 = float(s1.viewDepth);
-        out.color = color;
-        out.alpha = material.isTranslucent() ? material.opacity * textureAlpha : 1.0f;
-        out.source = p.triangle;
-        return true;
+
+        const Frame& m_frame;
+        std::uint32_t m_triangle;
+        glm::dvec2 m_ndc;
+        const FlatTriangle& m_flat;
+        std::array<glm::vec2, 3> m_uv;
+        mutable int m_segment = -1;  ///< the segment the members below belong to
+        mutable std::optional<raster::MovingTriangle> m_moving;
+        mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
+        mutable raster::Quadratic m_uvDenominator;
+    };
+
+    // The shaded mean colour of a triangle over [t0, t1] at a sample, and its opacity.
+    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
+        return shadeTimeSpan(frame.scene, frame.settings.shading, t0, t1, TriangleSurfacePoint(frame, triangle, ndc), frame.spanShading);
     }
 
-    // Builds the intervals of one sample from its fragments (sorted by path).
-    void buildIntervals(const Frame& frame, std::span<const Fragment> fragments, const glm::dvec2& ndc, TileScratch& scratch) const {
-        scratch.intervals.clear();
+    // Builds the intervals of one sample from its fragments (sorted by path), appending them to
+    // `out`. Depth and facing are all the resolve needs; opaque intervals are shaded later, and
+    // only if visible. Translucent ones are shaded now, since their opacity (texture alpha)
+    // decides what shows behind them.
+    void buildIntervals(const Frame& frame, std::span<const Fragment> fragments, const glm::dvec2& ndc, TileScratch& scratch,
+                        std::vector<Interval>& out) const {
         for (std::size_t i = 0; i < fragments.size(); ++i) {
             if (i > 0 && fragments[i].path == fragments[i - 1].path) continue;
             const SegmentPath& path = frame.paths[fragments[i].path];
+            const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
+            const Material& material = frame.scene.materials[tri.material];
+            const raster::MovingTriangle moving(path.clip0, path.clip1);
             scratch.events.clear();
-            frame.exactSpans(path, ndc, scratch.events);
+            frame.exactSpans(path, moving, ndc, scratch.events);
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
+                const float t0 = scratch.events[e], t1 = scratch.events[e + 1];
+                const double u0 = Frame::localTime(path, t0), u1 = Frame::localTime(path, t1);
+                const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
+                // The triangle cannot turn over inside a span (its edges would have to pass the
+                // sample), so its facing at mid-span is its facing throughout.
+                const bool isFrontFacing = moving.isFrontFacing(0.5 * (u0 + u1));
+                if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !isFrontFacing)) {
+                    ++scratch.counters.culledIntervals;
+                    continue;
+                }
                 Interval interval;
-                if (shadeInterval(frame, path, scratch.events[e], scratch.events[e + 1], ndc, interval)) scratch.intervals.push_back(interval);
-                else ++scratch.counters.culledIntervals;
+                interval.t0 = t0, interval.t1 = t1;
+                interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
+                interval.source = fragments[i].path;
+                if (material.isTranslucent()) {
+                    const ShadedColor shaded = shadeSpan(frame, path.triangle, t0, t1, ndc);
+                    interval.color = shaded.color, interval.alpha = shaded.alpha;
+                }
+                out.push_back(interval);
             }
         }
+    }
+
+    // NDC of sample i of a tile (pixel-major, pattern position minor).
+    static glm::dvec2 sampleNdc(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
+        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
+        const int pixel = int(i / spp), s = int(i % spp);
+        const int px = rect.x0 + pixel % tileWidth, py = rect.y0 + pixel / tileWidth;
+        const glm::i64vec2 offset = frame.pattern.offsets[s];
+        return raster::ndcFromRaster(double(std::int64_t(px) * raster::kSubpixelScale + offset.x) / raster::kSubpixelScale,
+                                     double(std::int64_t(py) * raster::kSubpixelScale + offset.y) / raster::kSubpixelScale,
+                                     frame.viewport.width, frame.viewport.height);
     }
 
     void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
@@ -405,8 +456,10 @@ private:
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
         const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
+        const Options& options = frame.options;
         Counters& counters = scratch.counters;
 
+        // Rasterize: every path face adds a fragment to each sample it covers.
         auto start = Clock::now();
         scratch.fragments.clear();
         for (const std::uint32_t index : grid.items(tile)) {
@@ -419,65 +472,140 @@ private:
         }
         counters.fragments += std::int64_t(scratch.fragments.size());
         // Counting sort by sample: each sample's fragments become one contiguous run.
-        scratch.offsets.assign(numSamples + 1, 0);
-        for (const Fragment& f : scratch.fragments) ++scratch.offsets[f.sample + 1];
-        for (std::size_t i = 1; i <= numSamples; ++i) scratch.offsets[i] += scratch.offsets[i - 1];
+        std::vector<std::uint32_t>& runs = scratch.fragmentRuns;
+        runs.assign(numSamples + 1, 0);
+        for (const Fragment& f : scratch.fragments) ++runs[f.sample + 1];
+        for (std::size_t i = 1; i <= numSamples; ++i) runs[i] += runs[i - 1];
         scratch.bySample.resize(scratch.fragments.size());
         {
-            std::vector<std::uint32_t> cursor(scratch.offsets.begin(), scratch.offsets.end() - 1);
+            std::vector<std::uint32_t> cursor(runs.begin(), runs.end() - 1);
             for (const Fragment& f : scratch.fragments) scratch.bySample[cursor[f.sample]++] = f;
         }
-        counters.rasterSeconds += secondsSince(start);
+        auto now = Clock::now();
+        counters.rasterSeconds += std::chrono::duration<double>(now - start).count();
 
-        scratch.color.assign(numSamples, frame.scene.background);
+        // Build: each sample's paths, once each, into exact-time intervals.
+        start = now;
+        scratch.built.clear();
+        scratch.builtRuns.assign(numSamples + 1, 0);
         for (std::size_t i = 0; i < numSamples; ++i) {
-            std::span<Fragment> fragments(scratch.bySample.data() + scratch.offsets[i], scratch.offsets[i + 1] - scratch.offsets[i]);
-            if (fragments.empty()) continue;
-            start = Clock::now();
-            std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
-            fragments = fragments.first(std::size_t(std::unique(fragments.begin(), fragments.end(),
-                                                                [](const Fragment& a, const Fragment& b) { return a.path == b.path; }) -
-                                                    fragments.begin()));
-            if (int(fragments.size()) > frame.options.maxFragments) {
-                // Over budget: keep the nearest paths.
-                ++counters.fragmentOverflowSamples;
-                std::nth_element(fragments.begin(), fragments.begin() + frame.options.maxFragments, fragments.end(),
-                                 [](const Fragment& a, const Fragment& b) { return a.nearness > b.nearness; });
-                fragments = fragments.first(std::size_t(frame.options.maxFragments));
+            std::span<Fragment> fragments(scratch.bySample.data() + runs[i], runs[i + 1] - runs[i]);
+            if (!fragments.empty()) {
                 std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
+                fragments = fragments.first(std::size_t(std::unique(fragments.begin(), fragments.end(),
+                                                                    [](const Fragment& a, const Fragment& b) { return a.path == b.path; }) -
+                                                        fragments.begin()));
+                if (int(fragments.size()) > options.maxFragments) {
+                    // Over budget: keep the nearest paths.
+                    ++counters.fragmentOverflowSamples;
+                    std::nth_element(fragments.begin(), fragments.begin() + options.maxFragments, fragments.end(),
+                                     [](const Fragment& a, const Fragment& b) { return a.nearness > b.nearness; });
+                    fragments = fragments.first(std::size_t(options.maxFragments));
+                    std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
+                }
+                const std::size_t first = scratch.built.size();
+                buildIntervals(frame, fragments, sampleNdc(frame, rect, i), scratch, scratch.built);
+                if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
+                    // Over budget: keep the nearest intervals.
+                    ++counters.intervalOverflowSamples;
+                    const auto begin = scratch.built.begin() + std::ptrdiff_t(first);
+                    std::nth_element(begin, begin + options.maxIntervals, scratch.built.end(),
+                                     [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
+                    scratch.built.resize(first + std::size_t(options.maxIntervals));
+                }
+                const std::int64_t count = std::int64_t(scratch.built.size() - first);
+                counters.intervals += count;
+                counters.maxIntervals = std::max(counters.maxIntervals, count);
             }
-            const int pixel = int(i / spp), s = int(i % spp);
-            const int px = rect.x0 + pixel % tileWidth, py = rect.y0 + pixel / tileWidth;
-            const glm::i64vec2 offset = frame.pattern.offsets[s];
-            const glm::dvec2 ndc = raster::ndcFromRaster(double(std::int64_t(px) * raster::kSubpixelScale + offset.x) / raster::kSubpixelScale,
-                                                         double(std::int64_t(py) * raster::kSubpixelScale + offset.y) / raster::kSubpixelScale,
-                                                         frame.viewport.width, frame.viewport.height);
-            buildIntervals(frame, fragments, ndc, scratch);
-            std::vector<Interval>& intervals = scratch.intervals;
-            if (int(intervals.size()) > frame.options.maxIntervals) {
-                ++counters.intervalOverflowSamples;
-                std::nth_element(intervals.begin(), intervals.begin() + frame.options.maxIntervals, intervals.end(),
-                                 [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
-                intervals.resize(std::size_t(frame.options.maxIntervals));
-            }
-            counters.intervals += std::int64_t(intervals.size());
-            counters.maxIntervals = std::max<std::int64_t>(counters.maxIntervals, std::int64_t(intervals.size()));
-            const auto sorted = Clock::now();
-            counters.buildSeconds += std::chrono::duration<double>(sorted - start).count();
-            if (frame.options.sortIntervals) {
-                motion_path::SortCounters sortCounters;
-                motion_path::sortDepthTime(intervals, frame.options.maxIntervals, sortCounters);
-                counters.splits += sortCounters.splits;
-                counters.cycles += sortCounters.cycles;
-                counters.intervalOverflowSamples += sortCounters.overflow > 0;
-            } else {
-                std::sort(intervals.begin(), intervals.end(), [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
-            }
-            const auto resolved = Clock::now();
-            counters.sortSeconds += std::chrono::duration<double>(resolved - sorted).count();
-            scratch.color[i] = motion_path::resolveIntervals(intervals, frame.options.maskBits, frame.scene.background);
-            counters.resolveSeconds += secondsSince(resolved);
+            scratch.builtRuns[i + 1] = std::uint32_t(scratch.built.size());
         }
+        now = Clock::now();
+        counters.buildSeconds += std::chrono::duration<double>(now - start).count();
+
+        // Sort: front to back in depth-time; splits may lengthen a list.
+        start = now;
+        scratch.sorted.clear();
+        scratch.sortedRuns.assign(numSamples + 1, 0);
+        for (std::size_t i = 0; i < numSamples; ++i) {
+            const std::uint32_t begin = scratch.builtRuns[i], end = scratch.builtRuns[i + 1];
+            if (end - begin > 1) {
+                std::vector<Interval>& work = scratch.work;
+                work.assign(scratch.built.begin() + begin, scratch.built.begin() + end);
+                if (options.sortIntervals) {
+                    motion_path::SortCounters sortCounters;
+                    motion_path::sortDepthTime(work, options.maxIntervals, sortCounters);
+                    counters.splits += sortCounters.splits;
+                    counters.cycles += sortCounters.cycles;
+                    counters.intervalOverflowSamples += sortCounters.overflow > 0;
+                } else {
+                    std::sort(work.begin(), work.end(), [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
+                }
+                scratch.sorted.insert(scratch.sorted.end(), work.begin(), work.end());
+            } else if (end > begin) {
+                scratch.sorted.push_back(scratch.built[begin]);
+            }
+            scratch.sortedRuns[i + 1] = std::uint32_t(scratch.sorted.size());
+        }
+        now = Clock::now();
+        counters.sortSeconds += std::chrono::duration<double>(now - start).count();
+
+        // Resolve: each interval's visible share of its sample.
+        start = now;
+        scratch.weights.resize(scratch.sorted.size());
+        scratch.backgroundWeights.assign(numSamples, 1.0f);
+        for (std::size_t i = 0; i < numSamples; ++i) {
+            const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
+            if (end == begin) continue;
+            scratch.backgroundWeights[i] = motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
+                                                                       std::span(scratch.weights).subspan(begin, end - begin));
+        }
+        now = Clock::now();
+        counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
+
+        // Shade: only what shows. Translucent intervals were shaded when built. Wholly visible
+        // pieces of one triangle that abut in time (the same triangle over consecutive motion
+        // segments, or the two halves of a depth-time split) are shaded as one span; a partly
+        // hidden piece is shaded alone, so its colour stays the mean over its own time.
+        start = now;
+        scratch.color.resize(numSamples);
+        for (std::size_t i = 0; i < numSamples; ++i) {
+            glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
+            const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
+            std::vector<VisibleSpan>& spans = scratch.spans;
+            spans.clear();
+            for (std::uint32_t k = begin; k < end; ++k) {
+                if (scratch.weights[k] <= 0.0f) continue;
+                const Interval& interval = scratch.sorted[k];
+                const std::uint32_t triangle = frame.paths[interval.source].triangle;
+                if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
+                    sum += interval.color * scratch.weights[k];
+                else {
+                    const int bits = motion_path::TimeMask::span(interval.t0, interval.t1, options.maskBits).count();
+                    const bool isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
+                    spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
+                }
+            }
+            if (!spans.empty()) {
+                std::sort(spans.begin(), spans.end(), [](const VisibleSpan& a, const VisibleSpan& b) {
+                    return a.triangle != b.triangle ? a.triangle < b.triangle : a.t0 < b.t0;
+                });
+                std::size_t merged = 0;
+                for (std::size_t k = 1; k < spans.size(); ++k) {
+                    if (spans[k].isWhole && spans[merged].isWhole && spans[k].triangle == spans[merged].triangle &&
+                        spans[k].t0 == spans[merged].t1)
+                        spans[merged].t1 = spans[k].t1, spans[merged].weight += spans[k].weight;
+                    else
+                        spans[++merged] = spans[k];
+                }
+                spans.resize(merged + 1);
+                const glm::dvec2 ndc = sampleNdc(frame, rect, i);
+                for (const VisibleSpan& span : spans) sum += shadeSpan(frame, span.triangle, span.t0, span.t1, ndc).color * span.weight;
+                counters.shadedIntervals += std::int64_t(spans.size());
+            }
+            scratch.color[i] = sum;
+        }
+        counters.shadeSeconds += secondsSince(start);
+
         // The image holds the background already; replace each tile pixel with its mean.
         for (int py = rect.y0; py <= rect.y1; ++py)
             for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * frame.viewport.width + px] = glm::vec3(0.0f);
@@ -498,6 +626,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.textureSamples = options.getInt("texture-samples", 16, 1, 1024);
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
+    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
     return std::make_unique<MotionPathRenderer>(o);
 }
 

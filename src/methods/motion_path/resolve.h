@@ -8,12 +8,19 @@
 
 namespace streak::motion_path {
 
-// The colour of a pixel sample over the shutter from its intervals sorted front to back (Hong &
-// Oh 2017, section 3.4), with numBits time slices. Opaque intervals: visible = current &
-// ~accumulated; colour += interval colour * |visible| / n; accumulated |= current; stop when
-// full; the background fills the slices nothing covers. When some interval is translucent,
-// each slice keeps a transmittance instead of a bit (beyond the paper): colour += alpha T c / n
-// per slice, T *= 1 - alpha.
+// How much each interval of a pixel sample shows over the shutter, from its intervals sorted
+// front to back (Hong & Oh 2017, section 3.4), with numBits time slices. The sample's colour is
+// sum(weights[i] * colour[i]) + returned * background, so colours are needed only where a
+// weight is non-zero: the renderer shades visible intervals alone.
+//
+// Opaque intervals: visible = current & ~accumulated; weight = |visible| / n; accumulated |=
+// current; stop when full; the background gets the slices nothing covers. When some interval is
+// translucent, each slice keeps a transmittance instead of a bit (beyond the paper): weight =
+// alpha * sum(T) / n over its slices, then T *= 1 - alpha. Opacity must be known up front.
+// `weights` has one entry per interval. Returns the background's weight.
+float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights);
+
+// The resolved colour, from the intervals' own colours.
 glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background);
 
 }  // namespace streak::motion_path

@@ -103,6 +103,42 @@ TEST(MotionPathRenderer, AgreesWithTheReferenceOnMovingScenes) {
     }
 }
 
+TEST(MotionPathRenderer, AntiAliasingAveragesExactSubsampleCoverage) {
+    // A quad below y = 1.375 whose right edge sweeps x from 0 to 4: with 8x8 sub-samples, 3 of
+    // 8 rows of pixel row 1 are inside, and a sub-sample at x is covered for (4 - x) / 4 of the
+    // shutter. Pixel (px, 1) is 3/8 * (3.5 - px) / 4, within one time slice.
+    const test::PixelCamera cam{4, 4, 2.0f};
+    Scene scene = test::emptyScene();
+    test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(1.0f)), -20.0f, -5.0f, 0.0f, 1.375f, 4.0f, 0.0f);
+    validateScene(scene);
+    const Image image = render("motion-path", scene, 4, 4, OptionMap(), nullptr, ShadingMode::Unlit, 8);
+    for (int px = 0; px < 4; ++px) EXPECT_NEAR(image.at(px, 1).x, 3.0f / 8.0f * (3.5f - float(px)) / 4.0f, 1.0f / 128 + 1e-5f) << px;
+    EXPECT_NEAR(image.at(1, 0).x, (3.5f - 1.0f) / 4.0f, 1.0f / 128 + 1e-5f);
+    EXPECT_NEAR(image.at(1, 2).x, 0.0f, 1e-6f);
+}
+
+TEST(MotionPathRenderer, MultiKeyAndCameraMotionAgreeWithTheReference) {
+    // K = 5 piecewise-linear keys give four paths per triangle, one per key segment; a moving
+    // camera (pan) bends screen paths, followed by curve-segments linear pieces. Both agree with
+    // the reference; for pan, more pieces are closer.
+    Scene cube = makeBuiltinScene("rotating-cube", withOption("keys", "5"));
+    validateScene(cube);
+    RenderStats stats;
+    const Image mp = render("motion-path", cube, 128, 96, OptionMap(), &stats, ShadingMode::Phong);
+    EXPECT_EQ(stats.counter("segments_per_triangle"), 4.0);
+    EXPECT_GT(psnr(mp, render("accumulation", cube, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong)), 40.0);
+
+    Scene pan = makeBuiltinScene("pan", OptionMap());
+    validateScene(pan);
+    const Image ref = render("accumulation", pan, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong);
+    RenderStats panStats;
+    const double one = psnr(render("motion-path", pan, 128, 96, withOption("curve-segments", "1"), &panStats, ShadingMode::Phong), ref);
+    EXPECT_EQ(panStats.counter("segments_per_triangle"), 1.0);
+    const double eight = psnr(render("motion-path", pan, 128, 96, withOption("curve-segments", "8"), nullptr, ShadingMode::Phong), ref);
+    EXPECT_GT(eight, 45.0);
+    EXPECT_GT(eight, one + 1.0);
+}
+
 TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
     // Ten static quads stacked in depth over every pixel: with a budget of 4 paths per sample
     // every sample overflows, the nearest are kept (the front quad's colour wins) and the

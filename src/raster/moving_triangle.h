@@ -1,0 +1,43 @@
+#pragma once
+
+#include "raster/edge_equation.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+
+namespace streak::raster {
+
+// MovingTriangle is a triangle whose clip-space corners move linearly over one motion segment,
+// c(u) = c_open + u (c_close - c_open), u in [0, 1]. In homogeneous 2D (Olano & Greer) the edge
+// function of corners j, k is (c_j(u) x c_k(u)) . p with p = (x, y, 1): a quadratic in u whose
+// coefficients are fixed vectors (Gribel et al. 2010). Keeping those vectors makes the edge
+// equations at any sample, and barycentrics, depth and facing at any (u, p), a few dot products
+// each, with no per-time triangle setup.
+class MovingTriangle {
+public:
+    MovingTriangle(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
+
+    // Edge e joins corners e and (e + 1) % 3; its value is the weight of the opposite corner.
+    Quadratic edgeFunction(int e, const glm::dvec2& ndc) const {
+        const glm::dvec3 p(ndc, 1.0);
+        return {glm::dot(m_a[e], p), glm::dot(m_b[e], p), glm::dot(m_c[e], p)};
+    }
+    // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
+    // evaluateHomogeneous() of the corners at u.
+    HomogeneousSample sample(double u, const glm::dvec2& ndc) const;
+    // Counter-clockwise (front facing) at time u, for corners in front of the eye.
+    bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
+
+private:
+    glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }
+    glm::dvec3 edgeVector(int e, double u) const { return (m_a[e] * u + m_b[e]) * u + m_c[e]; }
+
+    std::array<glm::dvec3, 3> m_a, m_b, m_c;        ///< edge e: (a u^2 + b u + c) . p
+    std::array<glm::dvec3, 3> m_corner, m_delta;    ///< (x, y, w) at u = 0 and its change to u = 1
+};
+
+}  // namespace streak::raster

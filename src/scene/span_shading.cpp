@@ -1,0 +1,140 @@
+#include "scene/span_shading.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace streak {
+
+namespace {
+
+float angleBetween(glm::vec3 a, glm::vec3 b) {
+    const float la = glm::length(a), lb = glm::length(b);
+    if (!(la > 0.0f) || !(lb > 0.0f)) return 0.0f;
+    return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f));
+}
+
+// The quadratic through (0, a), (1/2, m), (1, b), at f.
+template <class T>
+T quadraticThrough(const T& a, const T& m, const T& b, float f) {
+    return a + f * (-3.0f * a + 4.0f * m - b) + (f * f) * (2.0f * a - 4.0f * m + 2.0f * b);
+}
+
+// Lighting over a span: Simpson's three points (ends and middle), or n midpoint taps.
+class SpanLighting {
+public:
+    SpanLighting(const Scene& scene, const Material& material, float t0, float t1, const std::array<SurfacePoint, 3>& ends,
+                 int numTaps, const MovingSurfacePoint& point) {
+        auto light = [&](const SurfacePoint& p, float t) {
+            return phongTerms(scene, material, p.position, p.normal, p.isFrontFacing, scene.camera.positionAt(t));
+        };
+        if (numTaps <= 3) {
+            const float tm = 0.5f * (t0 + t1);
+            m_simpson = {light(ends[0], t0), light(ends[1], tm), light(ends[2], t1)};
+            m_mean.diffuse = (m_simpson[0].diffuse + 4.0f * m_simpson[1].diffuse + m_simpson[2].diffuse) / 6.0f;
+            m_mean.specular = (m_simpson[0].specular + 4.0f * m_simpson[1].specular + m_simpson[2].specular) / 6.0f;
+            return;
+        }
+        m_taps.reserve(std::size_t(numTaps));
+        for (int i = 0; i < numTaps; ++i) {
+            const float t = t0 + (float(i) + 0.5f) / float(numTaps) * (t1 - t0);
+            SurfacePoint p;
+            if (point.at(t, false, p)) m_taps.push_back(light(p, t));
+            else if (!m_taps.empty()) m_taps.push_back(m_taps.back());
+        }
+        if (m_taps.empty()) m_taps.push_back(light(ends[1], 0.5f * (t0 + t1)));
+        for (const PhongTerms& tap : m_taps) m_mean.diffuse += tap.diffuse, m_mean.specular += tap.specular;
+        m_mean.diffuse /= float(m_taps.size()), m_mean.specular /= float(m_taps.size());
+    }
+
+    const PhongTerms& mean() const { return m_mean; }
+
+    // The terms at fraction f of the span: the Simpson quadratic, or linear between taps.
+    PhongTerms at(float f) const {
+        if (m_taps.empty())
+            return {quadraticThrough(m_simpson[0].diffuse, m_simpson[1].diffuse, m_simpson[2].diffuse, f),
+                    quadraticThrough(m_simpson[0].specular, m_simpson[1].specular, m_simpson[2].specular, f)};
+        const float x = std::clamp(f * float(m_taps.size()) - 0.5f, 0.0f, float(m_taps.size() - 1));
+        const std::size_t i = std::min(std::size_t(x), m_taps.size() - 1), j = std::min(i + 1, m_taps.size() - 1);
+        const float w = x - float(i);
+        return {glm::mix(m_taps[i].diffuse, m_taps[j].diffuse, w), glm::mix(m_taps[i].specular, m_taps[j].specular, w)};
+    }
+
+private:
+    std::array<PhongTerms, 3> m_simpson{};
+    std::vector<PhongTerms> m_taps;
+    PhongTerms m_mean;
+};
+
+}  // namespace
+
+ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
+                          const SpanShadingSettings& settings) {
+    const std::array<float, 3> times{t0, 0.5f * (t0 + t1), t1};
+    std::array<SurfacePoint, 3> ends;
+    for (int i = 0; i < 3; ++i)
+        if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
+    const std::uint32_t materialIndex = ends[1].material;
+    const Material& material = scene.materials[materialIndex];
+    const bool isLit = mode == ShadingMode::Phong;
+
+    int lightingTaps = 1;
+    if (isLit) {
+        // Each half of the span turns by these angles; the reflected ray turns by twice the
+        // normal's turn, plus the view direction's.
+        auto toEye = [&](int i) { return scene.camera.positionAt(times[i]) - ends[i].position; };
+        const float normalTurn = std::max(angleBetween(ends[0].normal, ends[1].normal), angleBetween(ends[1].normal, ends[2].normal));
+        const float viewTurn = std::max(angleBetween(toEye(0), toEye(1)), angleBetween(toEye(1), toEye(2)));
+        lightingTaps = std::clamp(int(std::ceil(2.0f * (2.0f * normalTurn + viewTurn) / settings.maxTurnPerTap)), 1,
+                                  settings.maxLightingTaps);
+    }
+    const SpanLighting lighting = isLit ? SpanLighting(scene, material, t0, t1, ends, lightingTaps, point)
+                                        : SpanLighting(scene, material, t0, t1, ends, 0, point);
+
+    if (material.baseColorTexture < 0) {
+        const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, 0.0f);
+        if (!isLit) return albedo;
+        return {albedo.color * lighting.mean().diffuse + lighting.mean().specular, albedo.alpha};
+    }
+
+    const Texture& texture = scene.textures[std::size_t(material.baseColorTexture)];
+    const glm::vec2 size(float(texture.width()), float(texture.height()));
+    std::array<float, 3> footprintLod{};
+    for (int i = 0; i < 3; ++i) footprintLod[i] = texture.lodFromFootprint(ends[i].duvdx, ends[i].duvdy);
+    // The uv path's length in texels along its longer axis, through the middle.
+    const glm::vec2 a = glm::abs(ends[1].uv - ends[0].uv) * size, b = glm::abs(ends[2].uv - ends[1].uv) * size;
+    const float pathTexels = std::max(a.x + b.x, a.y + b.y);
+    const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
+    const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
+    const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
+
+    // Texel sums; the base colour and the material's opacity multiply them once at the end.
+    glm::vec3 sum(0.0f), specularSum(0.0f);
+    float alphaSum = 0.0f;
+    int used = 0;
+    for (int i = 0; i < taps; ++i) {
+        const float f = (float(i) + 0.5f) / float(taps);
+        glm::vec2 uv = ends[1].uv;
+        if (2 * i + 1 != taps && !point.uvAt(t0 + f * (t1 - t0), uv)) continue;
+        const float lod = std::max(pathLod, quadraticThrough(footprintLod[0], footprintLod[1], footprintLod[2], f));
+        const glm::vec4 texel = texture.sample(uv, lod);
+        if (isLit) {
+            const PhongTerms terms = lighting.at(f);
+            sum += glm::vec3(texel) * terms.diffuse;
+            specularSum += terms.specular;
+        } else {
+            sum += glm::vec3(texel);
+        }
+        alphaSum += texel.w;
+        ++used;
+    }
+    if (used == 0) return {glm::vec3(0.0f), 0.0f};
+    const float scale = 1.0f / float(used);
+    return {material.baseColor * sum * scale + specularSum * scale,
+            material.isTranslucent() ? material.opacity * alphaSum * scale : 1.0f};
+}
+
+}  // namespace streak
