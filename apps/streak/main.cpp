@@ -104,6 +104,7 @@ struct RenderArgs {
     std::optional<int> textureSamples;
     std::optional<int> sort;
     std::optional<int> curveSegments;
+    std::optional<int> tapsPerTexel;
     int aa = 1;
     std::string shading = "phong";
     std::optional<std::string> background;
@@ -135,7 +136,7 @@ int runRender(const RenderArgs& args) {
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
         {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}, {"sort", &args.sort},
-        {"curve-segments", &args.curveSegments}};
+        {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}};
     for (const auto& [key, value] : methodFlags)
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
@@ -232,8 +233,10 @@ int run(int argc, char** argv) {
     render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (150)");
     render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90)");
     render->add_option("--mask-bits", renderArgs.maskBits, "motion-path: time slices per mask, 32|64|128|256 (128)");
-    render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: at most this many texture taps per interval (16)");
+    render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: at most this many texture taps per interval (32)");
     render->add_option("--sort", renderArgs.sort, "motion-path: depth-time sort of intervals, 1 (on) or 0 (nearest-first only) (1)");
+    render->add_option("--taps-per-texel", renderArgs.tapsPerTexel,
+                       "motion-path: texture taps per texel of the footprint's mip level along an interval's uv path (2)");
     render->add_option("--curve-segments", renderArgs.curveSegments,
                        "motion-path: linear segments per key segment for curved screen motion (moving camera, Bezier keys) (4)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();

@@ -18,17 +18,24 @@ MovingTriangle::MovingTriangle(const std::array<glm::vec4, 3>& open, const std::
     }
 }
 
-HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const {
+HomogeneousSample MovingTriangle::fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc,
+                                             bool isFront) {
     const glm::dvec3 p(ndc, 1.0);
-    const glm::dvec3 e(glm::dot(edgeVector(1, u), p), glm::dot(edgeVector(2, u), p), glm::dot(edgeVector(0, u), p));
+    const glm::dvec3 e(glm::dot(edges[0], p), glm::dot(edges[1], p), glm::dot(edges[2], p));
     const double sum = e.x + e.y + e.z;
     HomogeneousSample s;
-    s.isFrontFacing = isFrontFacing(u);
+    s.isFrontFacing = isFront;
     if (sum == 0.0 || !std::isfinite(sum)) return s;
     s.bary = e / sum;
-    s.viewDepth = s.bary.x * corner(0, u).z + s.bary.y * corner(1, u).z + s.bary.z * corner(2, u).z;
+    s.viewDepth = glm::dot(s.bary, w);
     s.isValid = true;
     return s;
+}
+
+HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const {
+    const std::array<glm::dvec3, 3> edges{edgeVector(1, u), edgeVector(2, u), edgeVector(0, u)};
+    const glm::dvec3 w(corner(0, u).z, corner(1, u).z, corner(2, u).z);
+    return fromEdges(edges, w, ndc, glm::dot(corner(0, u), edges[0]) > 0.0);
 }
 
 }  // namespace streak::raster

@@ -29,10 +29,22 @@ public:
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;
+    // sample() at ndc and at ndc + offsets[i] (the neighbours a texture footprint needs), at
+    // the cost of little more than one: the edge vectors at u are shared.
+    template <std::size_t N>
+    void sampleWithNeighbours(double u, const glm::dvec2& ndc, const std::array<glm::dvec2, N>& offsets, HomogeneousSample& centre,
+                              std::array<HomogeneousSample, N>& neighbours) const {
+        const std::array<glm::dvec3, 3> edges{edgeVector(1, u), edgeVector(2, u), edgeVector(0, u)};
+        const glm::dvec3 w(corner(0, u).z, corner(1, u).z, corner(2, u).z);
+        const bool isFront = glm::dot(corner(0, u), edges[0]) > 0.0;
+        centre = fromEdges(edges, w, ndc, isFront);
+        for (std::size_t i = 0; i < N; ++i) neighbours[i] = fromEdges(edges, w, ndc + offsets[i], isFront);
+    }
     // Counter-clockwise (front facing) at time u, for corners in front of the eye.
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
 
 private:
+    static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
     glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }
     glm::dvec3 edgeVector(int e, double u) const { return (m_a[e] * u + m_b[e]) * u + m_c[e]; }
 

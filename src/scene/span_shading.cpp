@@ -5,23 +5,28 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace streak {
 
 namespace {
 
-float angleBetween(glm::vec3 a, glm::vec3 b) {
+// The angle between two directions, as the chord between their unit vectors (2 sin(angle / 2)):
+// within 5% of the angle up to 1 radian, and never more than it.
+float turnBetween(glm::vec3 a, glm::vec3 b) {
     const float la = glm::length(a), lb = glm::length(b);
     if (!(la > 0.0f) || !(lb > 0.0f)) return 0.0f;
-    return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f));
+    return glm::length(a / la - b / lb);
 }
 
-// The quadratic through (0, a), (1/2, m), (1, b), at f.
+// The quadratic through (0, a), (1/2, m), (1, b), as coefficients: value(f) = c0 + f (c1 + f c2).
 template <class T>
-T quadraticThrough(const T& a, const T& m, const T& b, float f) {
-    return a + f * (-3.0f * a + 4.0f * m - b) + (f * f) * (2.0f * a - 4.0f * m + 2.0f * b);
-}
+struct QuadraticThrough {
+    QuadraticThrough(const T& a, const T& m, const T& b) : c0(a), c1(-3.0f * a + 4.0f * m - b), c2(2.0f * a - 4.0f * m + 2.0f * b) {}
+    T operator()(float f) const { return c0 + f * (c1 + f * c2); }
+    T c0, c1, c2;
+};
 
 // Lighting over a span: Simpson's three points (ends and middle), or n midpoint taps.
 class SpanLighting {
@@ -33,9 +38,11 @@ public:
         };
         if (numTaps <= 3) {
             const float tm = 0.5f * (t0 + t1);
-            m_simpson = {light(ends[0], t0), light(ends[1], tm), light(ends[2], t1)};
-            m_mean.diffuse = (m_simpson[0].diffuse + 4.0f * m_simpson[1].diffuse + m_simpson[2].diffuse) / 6.0f;
-            m_mean.specular = (m_simpson[0].specular + 4.0f * m_simpson[1].specular + m_simpson[2].specular) / 6.0f;
+            const std::array<PhongTerms, 3> s{light(ends[0], t0), light(ends[1], tm), light(ends[2], t1)};
+            m_diffuse.emplace(s[0].diffuse, s[1].diffuse, s[2].diffuse);
+            m_specular.emplace(s[0].specular, s[1].specular, s[2].specular);
+            m_mean.diffuse = (s[0].diffuse + 4.0f * s[1].diffuse + s[2].diffuse) / 6.0f;
+            m_mean.specular = (s[0].specular + 4.0f * s[1].specular + s[2].specular) / 6.0f;
             return;
         }
         m_taps.reserve(std::size_t(numTaps));
@@ -54,9 +61,7 @@ public:
 
     // The terms at fraction f of the span: the Simpson quadratic, or linear between taps.
     PhongTerms at(float f) const {
-        if (m_taps.empty())
-            return {quadraticThrough(m_simpson[0].diffuse, m_simpson[1].diffuse, m_simpson[2].diffuse, f),
-                    quadraticThrough(m_simpson[0].specular, m_simpson[1].specular, m_simpson[2].specular, f)};
+        if (m_taps.empty()) return {(*m_diffuse)(f), (*m_specular)(f)};
         const float x = std::clamp(f * float(m_taps.size()) - 0.5f, 0.0f, float(m_taps.size() - 1));
         const std::size_t i = std::min(std::size_t(x), m_taps.size() - 1), j = std::min(i + 1, m_taps.size() - 1);
         const float w = x - float(i);
@@ -64,7 +69,7 @@ public:
     }
 
 private:
-    std::array<PhongTerms, 3> m_simpson{};
+    std::optional<QuadraticThrough<glm::vec3>> m_diffuse, m_specular;  ///< Simpson's case
     std::vector<PhongTerms> m_taps;
     PhongTerms m_mean;
 };
@@ -86,8 +91,8 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         // Each half of the span turns by these angles; the reflected ray turns by twice the
         // normal's turn, plus the view direction's.
         auto toEye = [&](int i) { return scene.camera.positionAt(times[i]) - ends[i].position; };
-        const float normalTurn = std::max(angleBetween(ends[0].normal, ends[1].normal), angleBetween(ends[1].normal, ends[2].normal));
-        const float viewTurn = std::max(angleBetween(toEye(0), toEye(1)), angleBetween(toEye(1), toEye(2)));
+        const float normalTurn = std::max(turnBetween(ends[0].normal, ends[1].normal), turnBetween(ends[1].normal, ends[2].normal));
+        const float viewTurn = std::max(turnBetween(toEye(0), toEye(1)), turnBetween(toEye(1), toEye(2)));
         lightingTaps = std::clamp(int(std::ceil(2.0f * (2.0f * normalTurn + viewTurn) / settings.maxTurnPerTap)), 1,
                                   settings.maxLightingTaps);
     }
@@ -110,6 +115,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
     const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
     const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
+    const QuadraticThrough<float> footprintLodAt(footprintLod[0], footprintLod[1], footprintLod[2]);
 
     // Texel sums; the base colour and the material's opacity multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
@@ -119,7 +125,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         const float f = (float(i) + 0.5f) / float(taps);
         glm::vec2 uv = ends[1].uv;
         if (2 * i + 1 != taps && !point.uvAt(t0 + f * (t1 - t0), uv)) continue;
-        const float lod = std::max(pathLod, quadraticThrough(footprintLod[0], footprintLod[1], footprintLod[2], f));
+        const float lod = std::max(pathLod, footprintLodAt(f));
         const glm::vec4 texel = texture.sample(uv, lod);
         if (isLit) {
             const PhongTerms terms = lighting.at(f);

@@ -41,6 +41,7 @@ struct Options {
     int textureSamples = 16;
     bool sortIntervals = true;
     int curveSegments = 4;
+    float tapsPerTexel = 2.0f;
 };
 
 // One triangle over one linear segment of the shutter: its corners at both ends. Everything
@@ -190,6 +191,8 @@ public:
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
         stats.setCounter("texture_samples", m_options.textureSamples);
+        stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
+        stats.setCounter("curve_segments", m_options.curveSegments);
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
         Image result(settings.width, settings.height);
@@ -214,6 +217,7 @@ private:
             }
             numSegments = (maxKeys - 1) * (isCurved ? options.curveSegments : 1);
             spanShading.maxTextureTaps = options.textureSamples;
+            spanShading.tapsPerTexel = options.tapsPerTexel;
         }
 
         void generate() {
@@ -335,15 +339,20 @@ private:
         bool at(float t, bool withFootprint, SurfacePoint& out) const override {
             const SegmentPath& path = select(t);
             const double u = Frame::localTime(path, t);
-            const raster::HomogeneousSample s = m_moving->sample(u, m_ndc);
-            if (!s.isValid) return false;
-            glm::dvec3 right = s.bary, down = s.bary;
+            raster::HomogeneousSample s;
+            glm::dvec3 right, down;
             if (withFootprint) {
                 const glm::dvec2 pixel(2.0 / m_frame.viewport.width, 2.0 / m_frame.viewport.height);
-                const raster::HomogeneousSample r = m_moving->sample(u, m_ndc + glm::dvec2(pixel.x, 0.0));
-                const raster::HomogeneousSample d = m_moving->sample(u, m_ndc - glm::dvec2(0.0, pixel.y));
+                std::array<raster::HomogeneousSample, 2> n;
+                m_moving->sampleWithNeighbours<2>(u, m_ndc, {glm::dvec2(pixel.x, 0.0), glm::dvec2(0.0, -pixel.y)}, s, n);
+                if (!s.isValid) return false;
                 // Past the horizon the neighbours say nothing about the footprint.
-                if (r.isValid && d.isValid && r.viewDepth > 0.0 && d.viewDepth > 0.0) right = r.bary, down = d.bary;
+                const bool isUseful = n[0].isValid && n[1].isValid && n[0].viewDepth > 0.0 && n[1].viewDepth > 0.0;
+                right = isUseful ? n[0].bary : s.bary, down = isUseful ? n[1].bary : s.bary;
+            } else {
+                s = m_moving->sample(u, m_ndc);
+                if (!s.isValid) return false;
+                right = down = s.bary;
             }
             std::array<glm::vec3, 3> world, normal;
             const float uf = float(u);
@@ -624,9 +633,10 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.maskBits = options.getInt("mask-bits", 128, 32, 256);
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
-    o.textureSamples = options.getInt("texture-samples", 16, 1, 1024);
+    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
     return std::make_unique<MotionPathRenderer>(o);
 }
 

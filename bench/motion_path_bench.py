@@ -1,0 +1,193 @@
+#!/usr/bin/python3
+"""The motion-path figures of docs/BENCHMARKS.md (issue: motion paths on the CPU).
+
+Sections (all by default, or pick with --sections):
+  quality  Every built-in scene at 256x192: motion-path's PSNR against accumulation with 3000
+           shutter times, and the accumulation sample count that reaches the same PSNR (found by
+           bisection), with both times and their ratio.
+  sweep    Hong & Oh's Fig. 15/16: cubes n = 1000, 1200, ..., 2000 at 1024x768, depth-time sort
+           on and off: time per frame and mean intervals per sample; a plot.
+  params   Error against --mask-bits and --texture-samples (cubes and rotating-cube).
+  default  The default scene (cubes n=1000, 1024x768): time per phase.
+
+Times are the "render" phase of --stats, the least of --repeats runs (the machines are shared);
+methods are compared within one run of this script. Images are compared as EXR, so 8-bit
+quantization does not cap the PSNR.
+
+usage: bench/motion_path_bench.py [--streak build/streak] [--sections quality,sweep,params,default]
+                                  [--plot docs/motion_path_sweep.png] [--repeats 3]
+"""
+import argparse
+import json
+import os
+import platform
+import re
+import subprocess
+import tempfile
+
+SCENES = ["rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"]
+
+
+class Streak:
+    def __init__(self, binary, tmp, repeats):
+        self.binary, self.tmp, self.repeats = binary, tmp, repeats
+        self.stats = os.path.join(tmp, "stats.json")
+
+    def render(self, scene, method, out, size="256x192", args=(), repeats=None):
+        """Renders; returns (least render ms over the repeats, stats of the last run)."""
+        w, h = size.split("x")
+        best = None
+        for _ in range(repeats or self.repeats):
+            subprocess.run([self.binary, "render", scene, "-m", method, "--width", w, "--height", h, "-o", out,
+                            "--stats", self.stats, *args], check=True)
+            with open(self.stats) as f:
+                stats = json.load(f)
+            ms = stats["time_ms"]["render"]
+            best = ms if best is None else min(best, ms)
+        return best, stats
+
+    def psnr(self, a, b):
+        out = subprocess.run([self.binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
+        return float(re.search(r"PSNR: (\S+) dB", out).group(1))
+
+
+def machine():
+    cpu = "unknown CPU"
+    if os.path.exists("/proc/cpuinfo"):
+        m = re.search(r"model name\s*:\s*(.*)", open("/proc/cpuinfo").read())
+        cpu = m.group(1) if m else cpu
+    return f"{cpu}, {os.cpu_count()} cores ({platform.system()})"
+
+
+def quality(streak):
+    print("### Quality and equal-quality speed (256x192, phong, reference: accumulation 3000)\n")
+    print("| scene | motion-path PSNR | motion-path ms | accumulation times at equal PSNR | accumulation ms | ratio |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for name in SCENES:
+        scene = "builtin:" + name
+        ref = os.path.join(streak.tmp, f"{name}-ref.exr")
+        streak.render(scene, "accumulation", ref, args=["--samples", "3000"], repeats=1)
+        out = os.path.join(streak.tmp, "mp.exr")
+        mp_ms, _ = streak.render(scene, "motion-path", out)
+        target = streak.psnr(ref, out)
+        # Smallest sample count whose PSNR reaches motion-path's (bisection; PSNR grows with it).
+        acc = os.path.join(streak.tmp, "acc.exr")
+        cache = {}
+
+        def acc_psnr(n):
+            if n not in cache:
+                streak.render(scene, "accumulation", acc, args=["--samples", str(n)], repeats=1)
+                cache[n] = streak.psnr(ref, acc)
+            return cache[n]
+
+        # A ladder first (PSNR is not quite monotonic in the count: stratified times can line up
+        # with the motion), then bisection between the last rung below and the first above.
+        ladder = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 768, 1024, 1536, 2048]
+        hi = next((r for r in ladder if acc_psnr(r) >= target), ladder[-1])
+        lo = ladder[max(0, ladder.index(hi) - 1)]
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if acc_psnr(mid) >= target:
+                hi = mid
+            else:
+                lo = mid
+        n = hi
+        acc_ms, _ = streak.render(scene, "accumulation", acc, args=["--samples", str(n)])
+        mp_ms = min(mp_ms, streak.render(scene, "motion-path", out)[0])
+        print(f"| {name} | {target:.1f} dB | {mp_ms:.1f} | {n} ({acc_psnr(n):.1f} dB) | {acc_ms:.1f} | {acc_ms / mp_ms:.1f} |",
+              flush=True)
+    print()
+
+
+def sweep(streak, plot):
+    print("### Hong & Oh Fig. 15/16: cubes at 1024x768, depth-time sort on and off\n")
+    print("| cubes n | triangles | sort on: ms | sort off: ms | intervals per sample (mean) | max | splits | sort ms (on) |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
+    rows = []
+    out = os.path.join(streak.tmp, "sweep.exr")
+    for n in range(1000, 2001, 200):
+        scene = f"builtin:cubes?n={n}"
+        on_ms, on = streak.render(scene, "motion-path", out, size="1024x768", args=["--sort", "1"])
+        off_ms, _ = streak.render(scene, "motion-path", out, size="1024x768", args=["--sort", "0"])
+        c = on["counters"]
+        rows.append((n, on_ms, off_ms, c["intervals_per_sample_mean"]))
+        print(f"| {n} | {int(c['triangles'])} | {on_ms:.0f} | {off_ms:.0f} | {c['intervals_per_sample_mean']:.2f} | "
+              f"{int(c['intervals_per_sample_max'])} | {int(c['interval_splits'])} | {on['time_ms']['sort']:.0f} |", flush=True)
+    print()
+    if plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8))
+        ns = [r[0] for r in rows]
+        a.plot(ns, [r[1] for r in rows], "o-", label="sort on")
+        a.plot(ns, [r[2] for r in rows], "s--", label="sort off")
+        a.set_xlabel("cubes")
+        a.set_ylabel("ms per frame (1024x768)")
+        a.set_title("time per frame (cf. Fig. 15)")
+        a.legend()
+        a.grid(alpha=0.3)
+        b.plot(ns, [r[3] for r in rows], "o-", color="C2")
+        b.set_xlabel("cubes")
+        b.set_ylabel("intervals per sample (mean)")
+        b.set_title("depth complexity (cf. Fig. 16)")
+        b.grid(alpha=0.3)
+        fig.suptitle(f"streak motion-path, {machine()}", fontsize=8)
+        fig.tight_layout()
+        fig.savefig(plot, dpi=110)
+        print(f"Plot: `{plot}`\n")
+
+
+def params(streak):
+    print("### Error against the mask size and the texture taps (256x192, phong)\n")
+    print("| scene | mask-bits | texture-samples | PSNR | ms |")
+    print("|---|---:|---:|---:|---:|")
+    out = os.path.join(streak.tmp, "params.exr")
+    for name in ["cubes", "rotating-cube"]:
+        scene = "builtin:" + name
+        ref = os.path.join(streak.tmp, f"{name}-ref.exr")
+        if not os.path.exists(ref):
+            streak.render(scene, "accumulation", ref, args=["--samples", "3000"], repeats=1)
+        configs = [(b, 16) for b in (32, 64, 128, 256)] + [(128, k) for k in (1, 4, 64)]
+        for bits, k in configs:
+            ms, _ = streak.render(scene, "motion-path", out, args=["--mask-bits", str(bits), "--texture-samples", str(k)])
+            print(f"| {name} | {bits} | {k} | {streak.psnr(ref, out):.1f} dB | {ms:.1f} |", flush=True)
+    print()
+
+
+def default(streak):
+    print("### Default scene: cubes n=1000, 1024x768\n")
+    out = os.path.join(streak.tmp, "default.exr")
+    ms, stats = streak.render("builtin:cubes", "motion-path", out, size="1024x768")
+    phases = ["generate", "bin", "rasterize", "build intervals", "sort", "resolve", "shade"]
+    print("| render ms (least of runs) | " + " | ".join(phases) + " |")
+    print("|---:|" + "---:|" * len(phases))
+    print(f"| {ms:.0f} | " + " | ".join(f"{stats['time_ms'].get(p, 0):.0f}" for p in phases) + " |")
+    c = stats["counters"]
+    print(f"\nIntervals per sample {c['intervals_per_sample_mean']:.2f} (max {int(c['intervals_per_sample_max'])}), "
+          f"{int(c['shaded_spans'])} spans shaded of {int(c['intervals'])} intervals.\n")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--streak", default="build/streak")
+    parser.add_argument("--sections", default="quality,sweep,params,default")
+    parser.add_argument("--plot", default="docs/motion_path_sweep.png")
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    print(f"Machine: {machine()}. Least of {args.repeats} runs per timed render.\n")
+    with tempfile.TemporaryDirectory() as tmp:
+        streak = Streak(args.streak, tmp, args.repeats)
+        sections = args.sections.split(",")
+        if "quality" in sections:
+            quality(streak)
+        if "sweep" in sections:
+            sweep(streak, args.plot)
+        if "params" in sections:
+            params(streak)
+        if "default" in sections:
+            default(streak)
+
+
+if __name__ == "__main__":
+    main()
