@@ -2,7 +2,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <bit>
 #include <cmath>
+#include <utility>
 
 namespace streak::raster {
 
@@ -36,6 +38,55 @@ HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const 
     const std::array<glm::dvec3, 3> edges{edgeVector(1, u), edgeVector(2, u), edgeVector(0, u)};
     const glm::dvec3 w(corner(0, u).z, corner(1, u).z, corner(2, u).z);
     return fromEdges(edges, w, ndc, glm::dot(corner(0, u), edges[0]) > 0.0);
+}
+
+int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds) const {
+    std::array<double, 8> breaks;
+    int n = 0;
+    breaks[n++] = 0.0;
+    std::array<Quadratic, 3> q;
+    for (int e = 0; e < 3; ++e) {
+        q[e] = edgeFunction(e, ndc);
+        double roots[2];
+        const int m = solveQuadratic(q[e], roots);
+        for (int i = 0; i < m; ++i)
+            if (roots[i] > 0.0 && roots[i] < 1.0) breaks[n++] = roots[i];
+    }
+    breaks[n++] = 1.0;
+    // At most 8 breaks: insertion sort.
+    for (int i = 1; i < n; ++i)
+        for (int j = i; j > 0 && breaks[j] < breaks[j - 1]; --j) std::swap(breaks[j], breaks[j - 1]);
+    int count = 0;
+    bool wasInside = false;
+    for (int i = 0; i + 1 < n; ++i) {
+        if (!(breaks[i + 1] > breaks[i])) continue;
+        const double u = 0.5 * (breaks[i] + breaks[i + 1]);
+        const double e0 = q[0](u), e1 = q[1](u), e2 = q[2](u);
+        bool inside = (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+        if (inside && checkNearPlane) inside = sample(u, ndc).viewDepth >= zNear;
+        if (inside != wasInside) bounds[count++] = breaks[i];
+        wasInside = inside;
+    }
+    if (wasInside) bounds[count++] = 1.0;
+    return count;
+}
+
+bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
+    auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
+    for (int k = 0; k <= 3; ++k) {
+        double sum = 0.0;
+        int count = 0;
+        for (int mask = 0; mask < 8; ++mask) {
+            if (std::popcount(unsigned(mask)) != k) continue;
+            const glm::dvec3 r0 = xyw(mask & 1 ? close[0] : open[0]);
+            const glm::dvec3 r1 = xyw(mask & 2 ? close[1] : open[1]);
+            const glm::dvec3 r2 = xyw(mask & 4 ? close[2] : open[2]);
+            sum += glm::dot(r0, glm::cross(r1, r2));
+            ++count;
+        }
+        if (!(sum / count < 0.0)) return false;
+    }
+    return true;
 }
 
 }  // namespace streak::raster

@@ -40,6 +40,15 @@ public:
         centre = fromEdges(edges, w, ndc, isFront);
         for (std::size_t i = 0; i < N; ++i) neighbours[i] = fromEdges(edges, w, ndc + offsets[i], isFront);
     }
+    // The exact spans of u in [0, 1] during which the sample at ndc lies inside the triangle
+    // (Gribel et al. 2010): between consecutive roots of the three edge equations and the ends
+    // the sample is inside where all three edge functions share a sign (either orientation, so
+    // a triangle turning over is handled) and the triangle lies beyond the near plane
+    // (view depth >= zNear; checked only when checkNearPlane is set, since depth on the
+    // triangle is a convex combination of its corners'). Writes start/end pairs to `bounds`,
+    // returns how many values it wrote (even, at most 8).
+    int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds) const;
+
     // Counter-clockwise (front facing) at time u, for corners in front of the eye.
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
 
@@ -51,5 +60,12 @@ private:
     std::array<glm::dvec3, 3> m_a, m_b, m_c;        ///< edge e: (a u^2 + b u + c) . p
     std::array<glm::dvec3, 3> m_corner, m_delta;    ///< (x, y, w) at u = 0 and its change to u = 1
 };
+
+// True when the triangle (all corners in front of the eye) is seen from its back at every u in
+// [0, 1]. Its orientation is det(c0, c1, c2)(u), a cubic in u; the corners are linear in u, so
+// the determinant is multilinear in them and its Bernstein coefficients are the means of the
+// determinants that take k corners from the end and 3 - k from the start. All negative: the
+// cubic is negative on [0, 1] (convex hull property).
+bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
 
 }  // namespace streak::raster

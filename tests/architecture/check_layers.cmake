@@ -1,5 +1,5 @@
 # Fails when a file under src/methods/<name>/ includes another method's headers, or when a lower
-# layer (util, image, scene, raster) includes a higher one. Run by CTest as Architecture.Layers.
+# layer (util, image, scene, raster, then exposure) includes a higher one. Run by CTest as Architecture.Layers.
 file(GLOB_RECURSE sources "${SRC}/*.h" "${SRC}/*.cpp")
 set(violations "")
 foreach(path IN LISTS sources)
@@ -15,8 +15,11 @@ foreach(path IN LISTS sources)
     if(in_method AND target MATCHES "^methods/([^/]+)/" AND NOT CMAKE_MATCH_1 STREQUAL method)
       list(APPEND violations "${rel} includes another method: ${target}")
     endif()
-    if(layer MATCHES "^(util|image|scene|raster)$" AND target MATCHES "^(methods|gpu)/")
+    if(layer MATCHES "^(util|image|scene|raster)$" AND target MATCHES "^(methods|gpu|exposure)/")
       list(APPEND violations "${rel} (layer ${layer}) includes a higher layer: ${target}")
+    endif()
+    if(layer STREQUAL "exposure" AND target MATCHES "^(methods|gpu)/")
+      list(APPEND violations "${rel} (layer exposure) includes a higher layer: ${target}")
     endif()
     if(layer STREQUAL "raster" AND target MATCHES "^scene/")
       list(APPEND violations "${rel}: raster must not depend on scene: ${target}")

@@ -69,4 +69,92 @@ TEST(MovingTriangle, RandomsMatchEvaluationAtEachTime) {
     EXPECT_GT(facingChecked, 1500);
 }
 
+namespace {
+
+std::array<glm::vec4, 3> atW1(glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+    return {glm::vec4(a, 0.0f, 1.0f), glm::vec4(b, 0.0f, 1.0f), glm::vec4(c, 0.0f, 1.0f)};
+}
+
+}  // namespace
+
+TEST(MovingTriangleInsideSpans, TranslatingTriangleEntersWhenItsEdgeArrives) {
+    // The right triangle x >= -1, y >= -1, x + y <= 0 moving +1 in x: at (1.2, -0.9) the
+    // hypotenuse arrives when 1.2 - u - 0.9 = 0, u = 0.3, and the sample stays inside to the end.
+    const MovingTriangle moving(atW1({-1, -1}, {1, -1}, {-1, 1}), atW1({0, -1}, {2, -1}, {0, 1}));
+    std::array<double, 8> b;
+    ASSERT_EQ(moving.insideSpans({1.2, -0.9}, 0.1, false, b), 2);
+    EXPECT_NEAR(b[0], 0.3, 1e-12);
+    EXPECT_EQ(b[1], 1.0);
+    // A sample it never reaches, and one it covers throughout.
+    EXPECT_EQ(moving.insideSpans({3.0, 0.5}, 0.1, false, b), 0);
+    ASSERT_EQ(moving.insideSpans({0.0, -0.5}, 0.1, false, b), 2);
+    EXPECT_EQ(b[0], 0.0);
+    EXPECT_EQ(b[1], 1.0);
+}
+
+TEST(MovingTriangleInsideSpans, RotatingEdgeLeavesAtTheClosedFormTime) {
+    // A = (0, 0) and C = (1, 1) fixed, B sliding from (1, 0) to (0, 1): edge AB turns about A and
+    // passes the sample (a, b) when (1 - u) b = u a, u = b / (a + b) (for these samples, before
+    // edge BC, which turns too, reaches them).
+    const MovingTriangle moving(atW1({0, 0}, {1, 0}, {1, 1}), atW1({0, 0}, {0, 1}, {1, 1}));
+    for (const glm::dvec2 p : {glm::dvec2(0.3, 0.1), glm::dvec2(0.5, 0.2), glm::dvec2(0.9, 0.05)}) {
+        std::array<double, 8> b;
+        ASSERT_EQ(moving.insideSpans(p, 0.1, false, b), 2);
+        EXPECT_EQ(b[0], 0.0);
+        EXPECT_NEAR(b[1], p.y / (p.x + p.y), 1e-12);
+    }
+}
+
+TEST(MovingTriangleInsideSpans, TriangleTurningOverIsInsideOnBothSides) {
+    // C falls from (0, 1) through the edge AB (y = -1) to (0, -3): the triangle flips at u = 1/2.
+    // (0, 0) is inside while C.y = 1 - 4u > 0 (u < 1/4); (0, -2) is inside, clockwise, once
+    // C.y < -2 (u > 3/4); a tangent sample on AB's line outside the edge never is.
+    const MovingTriangle moving(atW1({-1, -1}, {1, -1}, {0, 1}), atW1({-1, -1}, {1, -1}, {0, -3}));
+    std::array<double, 8> b;
+    ASSERT_EQ(moving.insideSpans({0.0, 0.0}, 0.1, false, b), 2);
+    EXPECT_EQ(b[0], 0.0);
+    EXPECT_NEAR(b[1], 0.25, 1e-12);
+    ASSERT_EQ(moving.insideSpans({0.0, -2.0}, 0.1, false, b), 2);
+    EXPECT_NEAR(b[0], 0.75, 1e-12);
+    EXPECT_EQ(b[1], 1.0);
+    EXPECT_FALSE(moving.isFrontFacing(0.9));
+    EXPECT_TRUE(moving.isFrontFacing(0.1));
+}
+
+TEST(MovingTriangleInsideSpans, RandomsMatchPointInTriangleAtManyTimes) {
+    // Random moving triangles and samples: inside at a time strictly within a span, outside
+    // strictly between spans, checked against a 2D point-in-triangle test of the corners at
+    // that time (away from the span ends, where rounding decides).
+    Rng rng(23);
+    int checked = 0;
+    for (int i = 0; i < 300; ++i) {
+        auto randomCorner = [&] { return glm::vec2(rng.uniform(-1, 1), rng.uniform(-1, 1)); };
+        const auto open = atW1(randomCorner(), randomCorner(), randomCorner());
+        const auto close = atW1(randomCorner(), randomCorner(), randomCorner());
+        const MovingTriangle moving(open, close);
+        const glm::dvec2 p(rng.uniform(-1, 1), rng.uniform(-1, 1));
+        std::array<double, 8> b;
+        const int n = moving.insideSpans(p, 0.1, false, b);
+        ASSERT_EQ(n % 2, 0);
+        for (int k = 0; k < 64; ++k) {
+            const double u = (k + 0.5) / 64.0;
+            bool nearEnd = false, inSpan = false;
+            for (int j = 0; j < n; ++j) nearEnd = nearEnd || std::abs(u - b[j]) < 1e-6;
+            for (int j = 0; j + 1 < n; j += 2) inSpan = inSpan || (u > b[j] && u < b[j + 1]);
+            if (nearEnd) continue;
+            const auto c = cornersAt(open, close, float(u));
+            auto side = [&](int e) {
+                const glm::dvec2 a(c[e].x, c[e].y), d(c[(e + 1) % 3].x, c[(e + 1) % 3].y);
+                return (d.x - a.x) * (p.y - a.y) - (d.y - a.y) * (p.x - a.x);
+            };
+            const double s0 = side(0), s1 = side(1), s2 = side(2);
+            if (std::min({std::abs(s0), std::abs(s1), std::abs(s2)}) < 1e-5) continue;
+            const bool inside = (s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0);
+            EXPECT_EQ(inside, inSpan) << "triangle " << i << " u " << u;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 15000);
+}
+
 }  // namespace streak::raster

@@ -1,15 +1,15 @@
 #include "methods/motion_path/motion_path_renderer.h"
 
+#include "exposure/segmented_geometry.h"
+#include "exposure/triangle_surface_point.h"
 #include "methods/motion_path/interval.h"
 #include "methods/motion_path/motion_path.h"
 #include "methods/motion_path/resolve.h"
 #include "methods/motion_path/time_mask.h"
 #include "raster/clip.h"
-#include "raster/edge_equation.h"
 #include "raster/moving_triangle.h"
 #include "raster/tile_grid.h"
 #include "scene/flat_geometry.h"
-#include "scene/span_shading.h"
 #include "util/error.h"
 
 #include <glm/geometric.hpp>
@@ -17,12 +17,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
-#include <bit>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <optional>
 #include <vector>
 
 namespace streak {
@@ -42,17 +38,6 @@ struct Options {
     bool sortIntervals = true;
     int curveSegments = 4;
     float tapsPerTexel = 2.0f;
-};
-
-// One triangle over one linear segment of the shutter: its corners at both ends. Everything
-// about an interval is evaluated from this, at exact times.
-struct SegmentPath {
-    std::uint32_t triangle = 0;
-    float t0 = 0.0f, t1 = 0.0f;
-    std::array<glm::vec4, 3> clip0{}, clip1{};
-    std::array<glm::vec3, 3> world0{}, world1{};
-    std::array<glm::vec3, 3> normal0{}, normal1{};
-    float nearness = 0.0f;  ///< 1 / smallest corner view depth (0 if some corner is behind the eye)
 };
 
 // A sample a motion path may cover. Paths are conservative and overlap themselves, so a sample
@@ -96,29 +81,6 @@ struct TileScratch {
     std::vector<glm::vec3> color;
     Counters counters;
 };
-
-// True when the triangle (all corners in front of the eye) is seen from its back at every time
-// of the segment. Its orientation is det(c0, c1, c2)(u), a cubic in u; the corners are linear in
-// u, so the determinant is multilinear in them and its Bernstein coefficients are the means of
-// the determinants that take k corners from the end and 3 - k from the start. All negative: the
-// cubic is negative on [0, 1] (convex hull property).
-bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
-    auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
-    for (int k = 0; k <= 3; ++k) {
-        double sum = 0.0;
-        int count = 0;
-        for (int mask = 0; mask < 8; ++mask) {
-            if (std::popcount(unsigned(mask)) != k) continue;
-            const glm::dvec3 r0 = xyw(mask & 1 ? close[0] : open[0]);
-            const glm::dvec3 r1 = xyw(mask & 2 ? close[1] : open[1]);
-            const glm::dvec3 r2 = xyw(mask & 4 ? close[2] : open[2]);
-            sum += glm::dot(r0, glm::cross(r1, r2));
-            ++count;
-        }
-        if (!(sum / count < 0.0)) return false;
-    }
-    return true;
-}
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -175,7 +137,7 @@ public:
         stats.setCounter("segments_per_triangle", frame.numSegments);
         stats.setCounter("motion_paths", double(frame.paths.size()));
         stats.setCounter("path_faces", double(frame.faces.size()));
-        stats.setCounter("backfacing_paths_skipped", double(frame.numBackFacingPaths));
+        stats.setCounter("backfacing_paths_skipped", double(frame.segmented.numBackFacing()));
         stats.setCounter("fragments", double(total.fragments));
         stats.setCounter("fragments_per_sample_mean", double(total.fragments) / numSamples);
         stats.setCounter("fragment_overflow_samples", double(total.fragmentOverflowSamples));
@@ -201,214 +163,68 @@ public:
     }
 
 private:
-    // The scene's motion paths, set up for rasterization.
+    // The scene's motion paths, set up for rasterization: one per triangle and linear segment
+    // (the shared exposure::SegmentedGeometry), paths indexed like the segments.
     struct Frame {
         Frame(const Scene& scene, const RenderSettings& settings, const Options& options)
-            : scene(scene), settings(settings), options(options), geometry(scene), viewport{settings.width, settings.height},
-              pattern(raster::SamplePattern::stratified(settings.aa)), aspect(float(settings.width) / float(settings.height)) {
-            // Linear keys under a static camera are linear in clip space: one path per key
-            // segment is exact. Curved screen motion (Bezier keys, a moving camera) is followed
-            // by curveSegments linear segments per key segment.
-            int maxKeys = 2;
-            bool isCurved = !scene.camera.isStatic();
-            for (const Mesh& mesh : scene.meshes) {
-                maxKeys = std::max(maxKeys, mesh.numKeys);
-                isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
-            }
-            numSegments = (maxKeys - 1) * (isCurved ? options.curveSegments : 1);
+            : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
+              pattern(raster::SamplePattern::stratified(settings.aa)),
+              segmented(scene, float(settings.width) / float(settings.height), options.curveSegments),
+              geometry(segmented.flat()), numSegments(segmented.numSegments()), paths(segmented.segments()) {
             spanShading.maxTextureTaps = options.textureSamples;
             spanShading.tapsPerTexel = options.tapsPerTexel;
         }
 
         void generate() {
-            const auto& triangles = geometry.triangles();
-            std::vector<std::vector<glm::vec3>> positions(numSegments + 1), normals(numSegments + 1);
-            std::vector<glm::mat4> clipFromWorld(numSegments + 1);
-            tbb::parallel_for(0, numSegments + 1, [&](int k) {
-                const float t = float(k) / float(numSegments);
-                geometry.positionsAt(t, positions[k]);
-                geometry.normalsAt(t, normals[k]);
-                clipFromWorld[k] = scene.camera.clipFromWorld(t, aspect);
-            });
-            paths.resize(triangles.size() * numSegments);
             constexpr std::size_t kChunk = 1024;
             const std::size_t numChunks = (paths.size() + kChunk - 1) / kChunk;
             std::vector<std::vector<raster::RasterTriangle>> chunkFaces(numChunks);
-            std::atomic<std::int64_t> culledPaths{0};
             tbb::parallel_for(std::size_t(0), numChunks, [&](std::size_t c) {
                 MotionPath path;
                 raster::TriangleSetup setup;
-                std::int64_t localCulled = 0;
                 for (std::size_t p = c * kChunk; p < std::min(paths.size(), (c + 1) * kChunk); ++p) {
-                    const std::uint32_t tri = std::uint32_t(p / numSegments);
-                    const int segment = int(p % numSegments);
-                    SegmentPath& sp = paths[p];
-                    sp.triangle = tri;
-                    sp.t0 = float(segment) / float(numSegments);
-                    sp.t1 = float(segment + 1) / float(numSegments);
-                    const glm::uvec3 v = triangles[tri].vertices;
-                    for (int i = 0; i < 3; ++i) {
-                        sp.world0[i] = positions[segment][v[i]], sp.world1[i] = positions[segment + 1][v[i]];
-                        sp.normal0[i] = normals[segment][v[i]], sp.normal1[i] = normals[segment + 1][v[i]];
-                        sp.clip0[i] = clipFromWorld[segment] * glm::vec4(sp.world0[i], 1.0f);
-                        sp.clip1[i] = clipFromWorld[segment + 1] * glm::vec4(sp.world1[i], 1.0f);
-                    }
-                    float minW = std::numeric_limits<float>::max();
-                    for (int i = 0; i < 3; ++i) minW = std::min({minW, sp.clip0[i].w, sp.clip1[i].w});
-                    sp.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
                     // A single-sided triangle that shows its back all through the segment is never
-                    // seen: skip its path.
-                    if (!triangles[tri].isDoubleSided && sp.nearness > 0.0f && isBackFacingThroughout(sp.clip0, sp.clip1)) {
-                        ++localCulled;
-                        continue;
-                    }
-                    motion_path::buildMotionPath(sp.clip0, sp.clip1, path);
+                    // seen: it gets no path.
+                    if (paths[p].isBackFacingThroughout) continue;
+                    motion_path::buildMotionPath(paths[p].clip0, paths[p].clip1, path);
                     for (int f = 0; f < path.count; ++f) {
                         raster::setupTriangle(path.faces[f].clip, std::uint32_t(p), scene.camera.zNear, viewport, raster::CullMode::None, setup);
                         chunkFaces[c].insert(chunkFaces[c].end(), setup.triangles.begin(), setup.triangles.begin() + setup.count);
                     }
                 }
-                culledPaths += localCulled;
             });
             for (const auto& chunk : chunkFaces) faces.insert(faces.end(), chunk.begin(), chunk.end());
-            numBackFacingPaths = culledPaths.load();
         }
 
-        // A shutter time as the path's segment parameter u in [0, 1].
-        static double localTime(const SegmentPath& p, float t) { return p.t1 > p.t0 ? (double(t) - p.t0) / (double(p.t1) - p.t0) : 0.0; }
+        // The exact time spans in which the sample lies inside the path's triangle, appended to
+        // `events` as start/end shutter times.
+        void exactSpans(const exposure::TriangleSegment& p, const raster::MovingTriangle& moving, const glm::dvec2& ndc,
+                        std::vector<float>& events) const {
+            std::array<double, 8> bounds;
+            // Depth on the triangle is a convex combination of its corners' depths, so only a
+            // path reaching nearer than the near plane needs the depth check.
+            const bool checkNearPlane = !(p.isInFront() && p.nearness <= 1.0f / scene.camera.zNear);
+            const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, bounds);
+            // Exact in double: u = 0 and 1 give t0 and t1 to the bit, so pieces abut across segments.
+            for (int i = 0; i < n; ++i) events.push_back(float(p.t0 + bounds[i] * (double(p.t1) - double(p.t0))));
+        }
 
-        // The exact time spans in which the sample lies inside the path's triangle (Gribel et
-        // al. 2010): between consecutive roots of the three moving edge equations and the
-        // segment ends, the sample is inside where all three edge functions share a sign and the
-        // triangle's plane lies beyond the near plane. Appends start/end pairs to `events`.
-        void exactSpans(const SegmentPath& p, const raster::MovingTriangle& moving, const glm::dvec2& ndc, std::vector<float>& events) const {
-            std::array<double, 8> breaks;
-            int n = 0;
-            breaks[n++] = 0.0;
-            std::array<raster::Quadratic, 3> q;
-            for (int e = 0; e < 3; ++e) {
-                q[e] = moving.edgeFunction(e, ndc);
-                double roots[2];
-                const int m = raster::solveQuadratic(q[e], roots);
-                for (int i = 0; i < m; ++i)
-                    if (roots[i] > 0.0 && roots[i] < 1.0) breaks[n++] = roots[i];
-            }
-            breaks[n++] = 1.0;
-            // At most 8 breaks: insertion sort.
-            for (int i = 1; i < n; ++i)
-                for (int j = i; j > 0 && breaks[j] < breaks[j - 1]; --j) std::swap(breaks[j], breaks[j - 1]);
-            bool wasInside = false;
-            for (int i = 0; i + 1 < n; ++i) {
-                if (!(breaks[i + 1] > breaks[i])) continue;
-                const double u = 0.5 * (breaks[i] + breaks[i + 1]);
-                const double e0 = q[0](u), e1 = q[1](u), e2 = q[2](u);
-                bool inside = (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
-                // Depth on the triangle is a convex combination of its corners' depths, so only a
-                // path reaching nearer than the near plane needs the depth check.
-                if (inside && !(p.nearness > 0.0f && p.nearness <= 1.0f / scene.camera.zNear))
-                    inside = moving.sample(u, ndc).viewDepth >= scene.camera.zNear;
-                if (inside != wasInside) events.push_back(float(p.t0 + breaks[i] * (p.t1 - p.t0)));
-                wasInside = inside;
-            }
-            if (wasInside) events.push_back(p.t1);
+        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
+            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, spanShading, triangle, t0, t1, ndc);
         }
 
         const Scene& scene;
         const RenderSettings& settings;
         const Options& options;
-        FlatGeometry geometry;
         raster::Viewport viewport;
         raster::SamplePattern pattern;
-        float aspect;
+        exposure::SegmentedGeometry segmented;
+        const FlatGeometry& geometry;
+        int numSegments;
+        std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         SpanShadingSettings spanShading;
-        int numSegments = 1;
-        std::vector<SegmentPath> paths;            ///< triangle-major, numSegments per triangle
-        std::vector<raster::RasterTriangle> faces; ///< source = index into paths
-        std::int64_t numBackFacingPaths = 0;       ///< skipped: back-facing all through their segment
+        std::vector<raster::RasterTriangle> faces;         ///< source = index into paths
     };
-
-    // A triangle under one sample at any time of the shutter: exact barycentrics from the
-    // moving edge equations of the segment holding that time, world position and normal from
-    // the key poses. The segment last used is kept, since taps come in time order.
-    class TriangleSurfacePoint final : public MovingSurfacePoint {
-    public:
-        TriangleSurfacePoint(const Frame& frame, std::uint32_t triangle, const glm::dvec2& ndc)
-            : m_frame(frame), m_triangle(triangle), m_ndc(ndc), m_flat(frame.geometry.triangles()[triangle]),
-              m_uv(frame.geometry.cornerUvs(m_flat)) {}
-
-        bool at(float t, bool withFootprint, SurfacePoint& out) const override {
-            const SegmentPath& path = select(t);
-            const double u = Frame::localTime(path, t);
-            raster::HomogeneousSample s;
-            glm::dvec3 right, down;
-            if (withFootprint) {
-                const glm::dvec2 pixel(2.0 / m_frame.viewport.width, 2.0 / m_frame.viewport.height);
-                std::array<raster::HomogeneousSample, 2> n;
-                m_moving->sampleWithNeighbours<2>(u, m_ndc, {glm::dvec2(pixel.x, 0.0), glm::dvec2(0.0, -pixel.y)}, s, n);
-                if (!s.isValid) return false;
-                // Past the horizon the neighbours say nothing about the footprint.
-                const bool isUseful = n[0].isValid && n[1].isValid && n[0].viewDepth > 0.0 && n[1].viewDepth > 0.0;
-                right = isUseful ? n[0].bary : s.bary, down = isUseful ? n[1].bary : s.bary;
-            } else {
-                s = m_moving->sample(u, m_ndc);
-                if (!s.isValid) return false;
-                right = down = s.bary;
-            }
-            std::array<glm::vec3, 3> world, normal;
-            const float uf = float(u);
-            for (int i = 0; i < 3; ++i) {
-                world[i] = glm::mix(path.world0[i], path.world1[i], uf);
-                normal[i] = glm::mix(path.normal0[i], path.normal1[i], uf);
-            }
-            out = m_frame.geometry.surfacePoint(m_flat, world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
-            return true;
-        }
-
-        // uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).
-        bool uvAt(float t, glm::vec2& uv) const override {
-            const double u = Frame::localTime(select(t), t);
-            const double denominator = m_uvDenominator(u);
-            if (denominator == 0.0 || !std::isfinite(denominator)) return false;
-            uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
-            return true;
-        }
-
-    private:
-        const SegmentPath& select(float t) const {
-            const int numSegments = m_frame.numSegments;
-            const int segment = std::clamp(int(t * float(numSegments)), 0, numSegments - 1);
-            const SegmentPath& path = m_frame.paths[std::size_t(m_triangle) * numSegments + segment];
-            if (segment != m_segment) {
-                m_segment = segment;
-                m_moving.emplace(path.clip0, path.clip1);
-                // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
-                m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
-                m_uvDenominator = {};
-                for (int i = 0; i < 3; ++i) {
-                    const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
-                    const glm::dvec2 uv(m_uv[i]);
-                    m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
-                    m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
-                }
-            }
-            return path;
-        }
-
-        const Frame& m_frame;
-        std::uint32_t m_triangle;
-        glm::dvec2 m_ndc;
-        const FlatTriangle& m_flat;
-        std::array<glm::vec2, 3> m_uv;
-        mutable int m_segment = -1;  ///< the segment the members below belong to
-        mutable std::optional<raster::MovingTriangle> m_moving;
-        mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
-        mutable raster::Quadratic m_uvDenominator;
-    };
-
-    // The shaded mean colour of a triangle over [t0, t1] at a sample, and its opacity.
-    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
-        return shadeTimeSpan(frame.scene, frame.settings.shading, t0, t1, TriangleSurfacePoint(frame, triangle, ndc), frame.spanShading);
-    }
 
     // Builds the intervals of one sample from its fragments (sorted by path), appending them to
     // `out`. Depth and facing are all the resolve needs; opaque intervals are shaded later, and
@@ -418,7 +234,7 @@ private:
                         std::vector<Interval>& out) const {
         for (std::size_t i = 0; i < fragments.size(); ++i) {
             if (i > 0 && fragments[i].path == fragments[i - 1].path) continue;
-            const SegmentPath& path = frame.paths[fragments[i].path];
+            const exposure::TriangleSegment& path = frame.paths[fragments[i].path];
             const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
             const Material& material = frame.scene.materials[tri.material];
             const raster::MovingTriangle moving(path.clip0, path.clip1);
@@ -426,7 +242,7 @@ private:
             frame.exactSpans(path, moving, ndc, scratch.events);
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
                 const float t0 = scratch.events[e], t1 = scratch.events[e + 1];
-                const double u0 = Frame::localTime(path, t0), u1 = Frame::localTime(path, t1);
+                const double u0 = path.localTime(t0), u1 = path.localTime(t1);
                 const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
                 // The triangle cannot turn over inside a span (its edges would have to pass the
                 // sample), so its facing at mid-span is its facing throughout.
@@ -440,7 +256,7 @@ private:
                 interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
                 interval.source = fragments[i].path;
                 if (material.isTranslucent()) {
-                    const ShadedColor shaded = shadeSpan(frame, path.triangle, t0, t1, ndc);
+                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc);
                     interval.color = shaded.color, interval.alpha = shaded.alpha;
                 }
                 out.push_back(interval);
@@ -608,7 +424,7 @@ private:
                 }
                 spans.resize(merged + 1);
                 const glm::dvec2 ndc = sampleNdc(frame, rect, i);
-                for (const VisibleSpan& span : spans) sum += shadeSpan(frame, span.triangle, span.t0, span.t1, ndc).color * span.weight;
+                for (const VisibleSpan& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc).color * span.weight;
                 counters.shadedIntervals += std::int64_t(spans.size());
             }
             scratch.color[i] = sum;

@@ -1,0 +1,65 @@
+#include "exposure/segmented_geometry.h"
+
+#include "raster/moving_triangle.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+
+namespace streak::exposure {
+
+SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curveSegments) : m_flat(scene) {
+    int maxKeys = 2;
+    bool isCurved = !scene.camera.isStatic();
+    for (const Mesh& mesh : scene.meshes) {
+        maxKeys = std::max(maxKeys, mesh.numKeys);
+        isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
+    }
+    m_numSegments = (maxKeys - 1) * (isCurved ? std::max(1, curveSegments) : 1);
+
+    const int n = m_numSegments;
+    std::vector<std::vector<glm::vec3>> positions(std::size_t(n) + 1), normals(std::size_t(n) + 1);
+    std::vector<glm::mat4> clipFromWorld(std::size_t(n) + 1);
+    tbb::parallel_for(0, n + 1, [&](int k) {
+        const float t = float(k) / float(n);
+        m_flat.positionsAt(t, positions[std::size_t(k)]);
+        m_flat.normalsAt(t, normals[std::size_t(k)]);
+        clipFromWorld[std::size_t(k)] = scene.camera.clipFromWorld(t, aspect);
+    });
+    const auto& triangles = m_flat.triangles();
+    m_segments.resize(triangles.size() * std::size_t(n));
+    std::atomic<std::int64_t> backFacing{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_segments.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+        std::int64_t localBackFacing = 0;
+        for (std::size_t p = range.begin(); p != range.end(); ++p) {
+            const std::uint32_t tri = std::uint32_t(p / std::size_t(n));
+            const std::size_t k = p % std::size_t(n);
+            TriangleSegment& s = m_segments[p];
+            s.triangle = tri;
+            s.t0 = float(k) / float(n);
+            s.t1 = float(k + 1) / float(n);
+            const glm::uvec3 v = triangles[tri].vertices;
+            float minW = std::numeric_limits<float>::max();
+            for (int i = 0; i < 3; ++i) {
+                s.world0[i] = positions[k][v[i]], s.world1[i] = positions[k + 1][v[i]];
+                s.normal0[i] = normals[k][v[i]], s.normal1[i] = normals[k + 1][v[i]];
+                s.clip0[i] = clipFromWorld[k] * glm::vec4(s.world0[i], 1.0f);
+                s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(s.world1[i], 1.0f);
+                minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
+            }
+            s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
+            s.isBackFacingThroughout = !triangles[tri].isDoubleSided && s.isInFront() && raster::isBackFacingThroughout(s.clip0, s.clip1);
+            localBackFacing += s.isBackFacingThroughout;
+        }
+        backFacing += localBackFacing;
+    });
+    m_numBackFacing = backFacing.load();
+}
+
+const TriangleSegment& SegmentedGeometry::segmentAt(std::uint32_t triangle, float t) const {
+    return segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1));
+}
+
+}  // namespace streak::exposure

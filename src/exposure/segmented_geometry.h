@@ -1,0 +1,60 @@
+#pragma once
+
+#include "scene/flat_geometry.h"
+#include "scene/scene.h"
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace streak::exposure {
+
+// One triangle over one linear segment [t0, t1] of the shutter: its corners at both ends, in
+// clip space (for the edge equations) and in world space (for shading). Between the ends every
+// corner moves linearly, in clip space and in world space alike.
+struct TriangleSegment {
+    std::uint32_t triangle = 0;
+    float t0 = 0.0f, t1 = 0.0f;
+    std::array<glm::vec4, 3> clip0{}, clip1{};
+    std::array<glm::vec3, 3> world0{}, world1{};
+    std::array<glm::vec3, 3> normal0{}, normal1{};  ///< zero for meshes without normals
+    float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
+    bool isBackFacingThroughout = false;             ///< single-sided and seen from behind at every time: never visible
+
+    // A shutter time as the segment's parameter u in [0, 1].
+    double localTime(float t) const { return t1 > t0 ? (double(t) - t0) / (double(t1) - t0) : 0.0; }
+    bool isInFront() const { return nearness > 0.0f; }
+};
+
+// SegmentedGeometry is a scene's triangles cut into linear segments of the shutter, the form
+// every exact-time method (motion paths, analytic edge equations) works on. Linear keys under a
+// static camera move linearly in clip space, so one segment per key segment is exact. Curved
+// screen motion (Bezier keys, a moving camera) is followed by curveSegments linear pieces per
+// key segment. Segments are triangle-major: segment s of triangle i is at i * numSegments + s.
+class SegmentedGeometry {
+public:
+    SegmentedGeometry(const Scene& scene, float aspect, int curveSegments);
+
+    const Scene& scene() const { return m_flat.scene(); }
+    const FlatGeometry& flat() const { return m_flat; }
+    int numSegments() const { return m_numSegments; }
+    std::span<const TriangleSegment> segments() const { return m_segments; }
+    const TriangleSegment& segment(std::uint32_t triangle, int s) const {
+        return m_segments[std::size_t(triangle) * std::size_t(m_numSegments) + std::size_t(s)];
+    }
+    // The segment of a triangle holding shutter time t.
+    const TriangleSegment& segmentAt(std::uint32_t triangle, float t) const;
+    std::int64_t numBackFacing() const { return m_numBackFacing; }
+
+private:
+    FlatGeometry m_flat;
+    int m_numSegments = 1;
+    std::vector<TriangleSegment> m_segments;
+    std::int64_t m_numBackFacing = 0;
+};
+
+}  // namespace streak::exposure

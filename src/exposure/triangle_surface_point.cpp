@@ -1,0 +1,74 @@
+#include "exposure/triangle_surface_point.h"
+
+#include <glm/common.hpp>
+
+#include <cmath>
+
+namespace streak::exposure {
+
+TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle,
+                                           const glm::dvec2& ndc)
+    : m_geometry(geometry), m_pixel(2.0 / viewport.width, 2.0 / viewport.height), m_triangle(triangle), m_ndc(ndc),
+      m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])) {}
+
+const TriangleSegment& TriangleSurfacePoint::select(float t) const {
+    const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t);
+    if (&segment != m_segment) {
+        m_segment = &segment;
+        m_moving.emplace(segment.clip0, segment.clip1);
+        // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
+        m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
+        m_uvDenominator = {};
+        for (int i = 0; i < 3; ++i) {
+            const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
+            const glm::dvec2 uv(m_uv[i]);
+            m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
+            m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
+        }
+    }
+    return segment;
+}
+
+bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) const {
+    const TriangleSegment& segment = select(t);
+    const double u = segment.localTime(t);
+    raster::HomogeneousSample s;
+    glm::dvec3 right, down;
+    if (withFootprint) {
+        std::array<raster::HomogeneousSample, 2> n;
+        m_moving->sampleWithNeighbours<2>(u, m_ndc, {glm::dvec2(m_pixel.x, 0.0), glm::dvec2(0.0, -m_pixel.y)}, s, n);
+        if (!s.isValid) return false;
+        // Past the horizon the neighbours say nothing about the footprint.
+        const bool isUseful = n[0].isValid && n[1].isValid && n[0].viewDepth > 0.0 && n[1].viewDepth > 0.0;
+        right = isUseful ? n[0].bary : s.bary, down = isUseful ? n[1].bary : s.bary;
+    } else {
+        s = m_moving->sample(u, m_ndc);
+        if (!s.isValid) return false;
+        right = down = s.bary;
+    }
+    std::array<glm::vec3, 3> world, normal;
+    const float uf = float(u);
+    for (int i = 0; i < 3; ++i) {
+        world[i] = glm::mix(segment.world0[i], segment.world1[i], uf);
+        normal[i] = glm::mix(segment.normal0[i], segment.normal1[i], uf);
+    }
+    const FlatGeometry& flat = m_geometry.flat();
+    out = flat.surfacePoint(flat.triangles()[m_triangle], world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
+    return true;
+}
+
+// uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).
+bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
+    const double u = select(t).localTime(t);
+    const double denominator = m_uvDenominator(u);
+    if (denominator == 0.0 || !std::isfinite(denominator)) return false;
+    uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
+    return true;
+}
+
+ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) {
+    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, triangle, ndc), settings);
+}
+
+}  // namespace streak::exposure

@@ -1,0 +1,43 @@
+#pragma once
+
+#include "exposure/segmented_geometry.h"
+#include "raster/moving_triangle.h"
+#include "raster/screen_triangle.h"
+#include "scene/span_shading.h"
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+
+namespace streak::exposure {
+
+// A triangle under one pixel sample at any time of the shutter, for span shading: exact
+// barycentrics from the moving edge equations of the segment holding that time, world position
+// and normal from the key poses, and the uv a texture tap needs as a ratio of quadratics. The
+// segment last used is kept, since taps come in time order.
+class TriangleSurfacePoint final : public MovingSurfacePoint {
+public:
+    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle, const glm::dvec2& ndc);
+
+    bool at(float t, bool withFootprint, SurfacePoint& out) const override;
+    bool uvAt(float t, glm::vec2& uv) const override;
+
+private:
+    const TriangleSegment& select(float t) const;
+
+    const SegmentedGeometry& m_geometry;
+    glm::dvec2 m_pixel;  ///< one pixel in NDC
+    std::uint32_t m_triangle;
+    glm::dvec2 m_ndc;
+    std::array<glm::vec2, 3> m_uv;
+    mutable const TriangleSegment* m_segment = nullptr;  ///< the segment the members below belong to
+    mutable std::optional<raster::MovingTriangle> m_moving;
+    mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
+    mutable raster::Quadratic m_uvDenominator;
+};
+
+// The mean shaded colour and opacity of a triangle over [t0, t1] at a sample (shadeTimeSpan).
+ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc);
+
+}  // namespace streak::exposure
