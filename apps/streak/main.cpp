@@ -23,6 +23,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 namespace streak {
 namespace {
@@ -105,6 +106,7 @@ struct RenderArgs {
     std::optional<int> sort;
     std::optional<int> curveSegments;
     std::optional<int> tapsPerTexel;
+    std::vector<std::string> options;
     int aa = 1;
     std::string shading = "phong";
     std::optional<std::string> background;
@@ -139,6 +141,11 @@ int runRender(const RenderArgs& args) {
         {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}};
     for (const auto& [key, value] : methodFlags)
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
+    for (const std::string& option : args.options) {
+        const std::size_t equals = option.find('=');
+        if (equals == std::string::npos || equals == 0) throw Error("--option must be KEY=VALUE, got '" + option + "'");
+        methodOptions.set(option.substr(0, equals), option.substr(equals + 1));
+    }
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
     checkWritable(args.output, true);
     if (!args.stats.empty()) checkWritable(args.stats, false);
@@ -231,7 +238,7 @@ int run(int argc, char** argv) {
     render->add_option("--height", renderArgs.height, "image height in pixels")->capture_default_str();
     render->add_option("--samples", renderArgs.samples, "time samples (accumulation: 256 shutter times; stochastic: 8 per pixel)");
     render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (150)");
-    render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90)");
+    render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90); analytic: compression budget K (0: unlimited)");
     render->add_option("--mask-bits", renderArgs.maskBits, "motion-path: time slices per mask, 32|64|128|256 (128)");
     render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: at most this many texture taps per interval (32)");
     render->add_option("--sort", renderArgs.sort, "motion-path: depth-time sort of intervals, 1 (on) or 0 (nearest-first only) (1)");
@@ -239,6 +246,7 @@ int run(int argc, char** argv) {
                        "motion-path: texture taps per texel of the footprint's mip level along an interval's uv path (2)");
     render->add_option("--curve-segments", renderArgs.curveSegments,
                        "motion-path: linear segments per key segment for curved screen motion (moving camera, Bezier keys) (4)");
+    render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");

@@ -1,6 +1,7 @@
 #include "methods/registry.h"
 
 #include "methods/accumulation/accumulation_renderer.h"
+#include "methods/analytic/analytic_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/stochastic/stochastic_renderer.h"
 #include "util/error.h"
@@ -16,6 +17,8 @@ namespace {
 const std::array kMethods{
     MethodInfo{"motion-path", "motion paths (Hong & Oh 2017): analytic time intervals per pixel, depth-time sort, time masks",
                createMotionPathRenderer},
+    MethodInfo{"analytic", "analytic edge equations (Gribel et al. 2010): exact exposure intervals, exact resolve, compression",
+               createAnalyticRenderer},
     MethodInfo{"accumulation", "reference: averages depth-buffered renders at S stratified shutter times (samples=256)",
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",

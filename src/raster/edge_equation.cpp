@@ -44,22 +44,36 @@ Quadratic movingEdgeFunction(const glm::vec4& a0, const glm::vec4& a1, const glm
     return {glm::dot(e.a, p), glm::dot(e.b, p), glm::dot(e.c, p)};
 }
 
-int solveQuadratic(const Quadratic& q, double roots[2]) {
+int solveQuadratic(const Quadratic& q, double roots[2], RootCaseCounts* counts) {
+    RootCaseCounts ignored;
+    RootCaseCounts& count = counts ? *counts : ignored;
     const double scale = std::max({std::abs(q.a), std::abs(q.b), std::abs(q.c)});
-    if (scale == 0.0) return 0;
+    if (scale == 0.0) {
+        ++count.constant;
+        return 0;
+    }
     // Treat a as zero when it is negligible next to b and c: the linear root is then the exact
     // one, where the quadratic formula would lose it to cancellation.
     if (std::abs(q.a) <= 1e-12 * scale) {
-        if (q.b == 0.0) return 0;
+        if (q.b == 0.0) {
+            ++count.constant;
+            return 0;
+        }
+        ++count.linear;
         roots[0] = -q.c / q.b;
         return 1;
     }
     const double discriminant = q.b * q.b - 4.0 * q.a * q.c;
-    if (discriminant < 0.0) return 0;
+    if (discriminant < 0.0) {
+        ++count.noRealRoot;
+        return 0;
+    }
     if (discriminant == 0.0) {
+        ++count.doubleRoot;
         roots[0] = -q.b / (2.0 * q.a);
         return 1;
     }
+    ++count.twoRoots;
     const double s = -0.5 * (q.b + std::copysign(std::sqrt(discriminant), q.b));
     double r0 = s / q.a;
     double r1 = s != 0.0 ? q.c / s : -r0;

@@ -5,6 +5,7 @@
 #include <glm/vec4.hpp>
 
 #include <array>
+#include <cstdint>
 
 namespace streak::raster {
 
@@ -47,9 +48,22 @@ MovingEdge movingEdge(const glm::dvec3& p0, const glm::dvec3& dp, const glm::dve
 Quadratic movingEdgeFunction(const glm::vec4& a0, const glm::vec4& a1, const glm::vec4& b0, const glm::vec4& b1,
                              const glm::dvec2& ndc);
 
+// How many quadratics were solved, by case (for --stats).
+struct RootCaseCounts {
+    std::int64_t constant = 0;    ///< a = b = 0: no root (or identically zero)
+    std::int64_t linear = 0;      ///< a negligible next to b and c: one root, -c / b
+    std::int64_t noRealRoot = 0;  ///< negative discriminant
+    std::int64_t doubleRoot = 0;  ///< zero discriminant: the sample touches the edge at one instant
+    std::int64_t twoRoots = 0;
+    void add(const RootCaseCounts& o) {
+        constant += o.constant, linear += o.linear, noRealRoot += o.noRealRoot, doubleRoot += o.doubleRoot, twoRoots += o.twoRoots;
+    }
+};
+
 // Real roots of q in ascending order (0, 1 or 2 of them; a double root counts once). Uses the
 // cancellation-free form (Numerical Recipes 5.6) and handles a = 0 (linear) and a = b = 0.
-int solveQuadratic(const Quadratic& q, double roots[2]);
+// Counts the case in *counts when given.
+int solveQuadratic(const Quadratic& q, double roots[2], RootCaseCounts* counts = nullptr);
 
 // NDC position of a fixed-point raster sample (x right, y up).
 glm::dvec2 ndcFromRaster(double rasterX, double rasterY, int width, int height);

@@ -40,7 +40,8 @@ HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const 
     return fromEdges(edges, w, ndc, glm::dot(corner(0, u), edges[0]) > 0.0);
 }
 
-int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds) const {
+int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                                RootCaseCounts* rootCases) const {
     std::array<double, 8> breaks;
     int n = 0;
     breaks[n++] = 0.0;
@@ -48,7 +49,7 @@ int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkN
     for (int e = 0; e < 3; ++e) {
         q[e] = edgeFunction(e, ndc);
         double roots[2];
-        const int m = solveQuadratic(q[e], roots);
+        const int m = solveQuadratic(q[e], roots, rootCases);
         for (int i = 0; i < m; ++i)
             if (roots[i] > 0.0 && roots[i] < 1.0) breaks[n++] = roots[i];
     }

@@ -47,7 +47,8 @@ public:
     // (view depth >= zNear; checked only when checkNearPlane is set, since depth on the
     // triangle is a convex combination of its corners'). Writes start/end pairs to `bounds`,
     // returns how many values it wrote (even, at most 8).
-    int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds) const;
+    int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                    RootCaseCounts* rootCases = nullptr) const;
 
     // Counter-clockwise (front facing) at time u, for corners in front of the eye.
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }

@@ -1,5 +1,7 @@
 #include "raster/sample_pattern.h"
 
+#include "raster/edge_equation.h"
+
 #include <cassert>
 #include <cmath>
 
@@ -13,6 +15,12 @@ SamplePattern SamplePattern::stratified(int n) {
             pattern.offsets.emplace_back(std::int64_t(std::floor((i + 0.5) / n * kSubpixelScale)),
                                          std::int64_t(std::floor((j + 0.5) / n * kSubpixelScale)));
     return pattern;
+}
+
+glm::dvec2 SamplePattern::ndcOf(int px, int py, int s, int width, int height) const {
+    const glm::i64vec2 offset = offsets[std::size_t(s)];
+    return ndcFromRaster(double(std::int64_t(px) * kSubpixelScale + offset.x) / kSubpixelScale,
+                         double(std::int64_t(py) * kSubpixelScale + offset.y) / kSubpixelScale, width, height);
 }
 
 }  // namespace streak::raster

@@ -20,6 +20,8 @@ struct SamplePattern {
 
     static SamplePattern stratified(int n);
     int count() const { return int(offsets.size()); }
+    // The NDC position of sample s of pixel (px, py) in a width x height image.
+    glm::dvec2 ndcOf(int px, int py, int s, int width, int height) const;
 };
 
 }  // namespace streak::raster

@@ -95,6 +95,18 @@ void scanTriangle(const ScreenTriangle& tri, const PixelBounds& region, const Sa
 
 // Adds weight times the box-filtered mean of each pixel's samples in `region` to its pixel in
 // `image` (row-major, imageWidth wide). Samples are laid out pixel-major within the region.
+// Counting sort of a tile's records by their sample (record.sample in [0, numSamples)): each
+// sample's records become one run, bySample[runs[i] .. runs[i + 1]), in their original order.
+template <class Record>
+void groupBySample(std::span<const Record> records, std::size_t numSamples, std::vector<std::uint32_t>& runs, std::vector<Record>& bySample) {
+    runs.assign(numSamples + 1, 0);
+    for (const Record& r : records) ++runs[r.sample + 1];
+    for (std::size_t i = 1; i <= numSamples; ++i) runs[i] += runs[i - 1];
+    bySample.resize(records.size());
+    std::vector<std::uint32_t> cursor(runs.begin(), runs.end() - 1);
+    for (const Record& r : records) bySample[cursor[r.sample]++] = r;
+}
+
 void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> sampleColors, float weight,
                     std::span<glm::vec3> image, int imageWidth);
 

@@ -66,4 +66,16 @@ inline void addPixelQuad(Scene& scene, const PixelCamera& cam, std::uint32_t mat
                   {cam.at(x0 + dx, y0 + dy), cam.at(x0 + dx, y1 + dy), cam.at(x1 + dx, y1 + dy), cam.at(x1 + dx, y0 + dy)});
 }
 
+// Red moves from depth 2 to 4, green from 4 to 2, both covering an 8x8 image.
+inline Scene crossingQuads() {
+    Scene scene = emptyScene();
+    const PixelCamera c2{8, 8, 2.0f}, c4{8, 8, 4.0f};
+    const std::uint32_t red = addMaterial(scene, {1, 0, 0}), green = addMaterial(scene, {0, 1, 0});
+    auto corners = [](const PixelCamera& c) { return std::array<glm::vec3, 4>{c.at(-4, -4), c.at(-4, 12), c.at(12, 12), c.at(12, -4)}; };
+    addMovingQuad(scene, red, corners(c2), corners(c4));
+    addMovingQuad(scene, green, corners(c4), corners(c2));
+    validateScene(scene);
+    return scene;
+}
+
 }  // namespace streak::test

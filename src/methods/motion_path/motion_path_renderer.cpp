@@ -2,6 +2,7 @@
 
 #include "exposure/segmented_geometry.h"
 #include "exposure/triangle_surface_point.h"
+#include "exposure/visible_pieces.h"
 #include "methods/motion_path/interval.h"
 #include "methods/motion_path/motion_path.h"
 #include "methods/motion_path/resolve.h"
@@ -55,14 +56,6 @@ struct Counters {
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
 
-// A visible piece of a triangle at one sample, and its share of the sample.
-struct VisibleSpan {
-    std::uint32_t triangle = 0;
-    float t0 = 0.0f, t1 = 0.0f;
-    float weight = 0.0f;
-    bool isWhole = false;  ///< visible all through [t0, t1]: may merge with its neighbours
-};
-
 // A tile works in phases over all its samples (rasterize, build, sort, resolve, shade), each
 // phase leaving per-sample runs in one tile-wide array: runs[i]..runs[i + 1] belong to sample i.
 struct TileScratch {
@@ -76,7 +69,7 @@ struct TileScratch {
     std::vector<float> weights;            ///< per sorted interval: its share of the sample
     std::vector<float> backgroundWeights;  ///< per sample
     std::vector<Interval> work;            ///< one sample's list while it is sorted
-    std::vector<VisibleSpan> spans;        ///< one sample's visible opaque pieces
+    std::vector<exposure::VisiblePiece> spans;  ///< one sample's visible opaque pieces
     std::vector<float> events;
     std::vector<glm::vec3> color;
     Counters counters;
@@ -267,12 +260,9 @@ private:
     // NDC of sample i of a tile (pixel-major, pattern position minor).
     static glm::dvec2 sampleNdc(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
         const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
-        const int pixel = int(i / spp), s = int(i % spp);
-        const int px = rect.x0 + pixel % tileWidth, py = rect.y0 + pixel / tileWidth;
-        const glm::i64vec2 offset = frame.pattern.offsets[s];
-        return raster::ndcFromRaster(double(std::int64_t(px) * raster::kSubpixelScale + offset.x) / raster::kSubpixelScale,
-                                     double(std::int64_t(py) * raster::kSubpixelScale + offset.y) / raster::kSubpixelScale,
-                                     frame.viewport.width, frame.viewport.height);
+        const int pixel = int(i / spp);
+        return frame.pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
+                                   frame.viewport.height);
     }
 
     void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
@@ -296,16 +286,8 @@ private:
             });
         }
         counters.fragments += std::int64_t(scratch.fragments.size());
-        // Counting sort by sample: each sample's fragments become one contiguous run.
-        std::vector<std::uint32_t>& runs = scratch.fragmentRuns;
-        runs.assign(numSamples + 1, 0);
-        for (const Fragment& f : scratch.fragments) ++runs[f.sample + 1];
-        for (std::size_t i = 1; i <= numSamples; ++i) runs[i] += runs[i - 1];
-        scratch.bySample.resize(scratch.fragments.size());
-        {
-            std::vector<std::uint32_t> cursor(runs.begin(), runs.end() - 1);
-            for (const Fragment& f : scratch.fragments) scratch.bySample[cursor[f.sample]++] = f;
-        }
+        raster::groupBySample(std::span<const Fragment>(scratch.fragments), numSamples, scratch.fragmentRuns, scratch.bySample);
+        const std::vector<std::uint32_t>& runs = scratch.fragmentRuns;
         auto now = Clock::now();
         counters.rasterSeconds += std::chrono::duration<double>(now - start).count();
 
@@ -387,16 +369,14 @@ private:
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
 
-        // Shade: only what shows. Translucent intervals were shaded when built. Wholly visible
-        // pieces of one triangle that abut in time (the same triangle over consecutive motion
-        // segments, or the two halves of a depth-time split) are shaded as one span; a partly
-        // hidden piece is shaded alone, so its colour stays the mean over its own time.
+        // Shade: only what shows. Translucent intervals were shaded when built; abutting wholly
+        // visible pieces of a triangle are shaded as one span (exposure::mergeAbuttingPieces).
         start = now;
         scratch.color.resize(numSamples);
         for (std::size_t i = 0; i < numSamples; ++i) {
             glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
             const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
-            std::vector<VisibleSpan>& spans = scratch.spans;
+            std::vector<exposure::VisiblePiece>& spans = scratch.spans;
             spans.clear();
             for (std::uint32_t k = begin; k < end; ++k) {
                 if (scratch.weights[k] <= 0.0f) continue;
@@ -411,20 +391,9 @@ private:
                 }
             }
             if (!spans.empty()) {
-                std::sort(spans.begin(), spans.end(), [](const VisibleSpan& a, const VisibleSpan& b) {
-                    return a.triangle != b.triangle ? a.triangle < b.triangle : a.t0 < b.t0;
-                });
-                std::size_t merged = 0;
-                for (std::size_t k = 1; k < spans.size(); ++k) {
-                    if (spans[k].isWhole && spans[merged].isWhole && spans[k].triangle == spans[merged].triangle &&
-                        spans[k].t0 == spans[merged].t1)
-                        spans[merged].t1 = spans[k].t1, spans[merged].weight += spans[k].weight;
-                    else
-                        spans[++merged] = spans[k];
-                }
-                spans.resize(merged + 1);
+                exposure::mergeAbuttingPieces(spans);
                 const glm::dvec2 ndc = sampleNdc(frame, rect, i);
-                for (const VisibleSpan& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc).color * span.weight;
+                for (const exposure::VisiblePiece& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc).color * span.weight;
                 counters.shadedIntervals += std::int64_t(spans.size());
             }
             scratch.color[i] = sum;

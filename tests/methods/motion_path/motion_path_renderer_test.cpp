@@ -3,31 +3,15 @@
 #include "image/metrics.h"
 #include "methods/registry.h"
 #include "scene/builtin_scenes.h"
+#include "support/render.h"
 #include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
 
 namespace streak {
 
-namespace {
-
-Image render(const std::string& method, const Scene& scene, int width, int height, OptionMap options, RenderStats* stats = nullptr,
-             ShadingMode shading = ShadingMode::Unlit, int aa = 1) {
-    std::unique_ptr<Renderer> renderer = createRenderer(method, options);
-    RenderSettings settings;
-    settings.width = width, settings.height = height, settings.shading = shading, settings.aa = aa;
-    RenderStats local;
-    RenderContext context{stats ? *stats : local};
-    return renderer->render(scene, settings, context);
-}
-
-OptionMap withOption(const std::string& key, const std::string& value) {
-    OptionMap o;
-    o.set(key, value);
-    return o;
-}
-
-}  // namespace
+using test::render;
+using test::withOption;
 
 TEST(MotionPathRenderer, TranslatingQuadCoversTheAnalyticFraction) {
     // As for the references: the quad's right edge sweeps x from 2 to 14; pixel p is covered
@@ -48,13 +32,7 @@ TEST(MotionPathRenderer, TranslatingQuadCoversTheAnalyticFraction) {
 TEST(MotionPathRenderer, CrossingQuadsSwapOrderMidShutter) {
     // Red moves from depth 2 to 4, green from 4 to 2: their intervals cross at t = 1/2 and are
     // split there; each pixel is half red, half green.
-    Scene scene = test::emptyScene();
-    const test::PixelCamera c2{8, 8, 2.0f}, c4{8, 8, 4.0f};
-    const std::uint32_t red = test::addMaterial(scene, {1, 0, 0}), green = test::addMaterial(scene, {0, 1, 0});
-    auto corners = [](const test::PixelCamera& c) { return std::array<glm::vec3, 4>{c.at(-4, -4), c.at(-4, 12), c.at(12, 12), c.at(12, -4)}; };
-    test::addMovingQuad(scene, red, corners(c2), corners(c4));
-    test::addMovingQuad(scene, green, corners(c4), corners(c2));
-    validateScene(scene);
+    const Scene scene = test::crossingQuads();
     RenderStats stats;
     const Image image = render("motion-path", scene, 8, 8, OptionMap(), &stats);
     EXPECT_NEAR(image.at(3, 3).x, 0.5f, 1.0f / 128 + 1e-5f);

@@ -1,0 +1,408 @@
+#include "methods/analytic/analytic_renderer.h"
+
+#include "exposure/segmented_geometry.h"
+#include "exposure/triangle_surface_point.h"
+#include "exposure/visible_pieces.h"
+#include "methods/analytic/exposure_interval.h"
+#include "raster/moving_triangle.h"
+#include "raster/tile_grid.h"
+#include "util/error.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+namespace streak {
+
+namespace {
+
+using analytic::ExposureInterval;
+
+constexpr int kTileSize = 16;
+
+struct Options {
+    int maxIntervals = 0;  ///< 0: unlimited
+    analytic::OracleWeights oracle;
+    bool tileCull = true;
+    bool checkDepthOrder = false;
+    int textureSamples = 32;
+    float tapsPerTexel = 2.0f;
+    int curveSegments = 4;
+};
+
+// One interval waiting in its tile for its sample's list.
+struct Record {
+    std::uint32_t sample = 0;  ///< within the tile
+    ExposureInterval interval;
+};
+
+struct Counters {
+    std::int64_t intervals = 0, maxIntervals = 0, merges = 0, culledBackFacing = 0, tileTests = 0, tilesCulled = 0,
+                 shadedSpans = 0, compressedSamples = 0, maxResolved = 0;
+    raster::RootCaseCounts roots;
+    double misorderedTime = 0.0, coveredPairTime = 0.0;
+    double intervalSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
+};
+
+struct TileScratch {
+    std::vector<Record> records, bySample;
+    std::vector<std::uint32_t> runs;
+    std::vector<ExposureInterval> list;
+    std::vector<float> weights;
+    std::vector<exposure::VisiblePiece> pieces;
+    std::vector<glm::vec3> color;
+    Counters counters;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Largest value of q on [0, 1].
+double maxOnUnitInterval(const raster::Quadratic& q) {
+    double m = std::max(q(0.0), q(1.0));
+    if (q.a < 0.0) {
+        const double u = -q.b / (2.0 * q.a);
+        if (u > 0.0 && u < 1.0) m = std::max(m, q(u));
+    }
+    return m;
+}
+
+class AnalyticRenderer final : public Renderer {
+public:
+    explicit AnalyticRenderer(const Options& options) : m_options(options) {}
+
+    Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
+        const raster::Viewport viewport{settings.width, settings.height};
+        Frame frame{scene, settings, m_options, viewport, raster::SamplePattern::stratified(settings.aa), {}, {}, {}};
+        {
+            PhaseTimer timer(context.stats, "setup");
+            frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
+            frame.spanShading.maxTextureTaps = m_options.textureSamples;
+            frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
+            frame.computeBounds();
+        }
+        raster::TileGrid grid(viewport, kTileSize);
+        {
+            PhaseTimer timer(context.stats, "bin");
+            grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
+        }
+        std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
+        tbb::enumerable_thread_specific<TileScratch> scratch;
+        {
+            PhaseTimer timer(context.stats, "tiles");
+            grid.forEachTile([&](int tile) { renderTile(frame, grid, tile, scratch.local(), image); }, /*includeEmpty=*/true);
+        }
+        if (context.progress) context.progress->update(1.0);
+
+        Counters total;
+        for (const TileScratch& s : scratch) {
+            const Counters& c = s.counters;
+            total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
+            total.merges += c.merges, total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests;
+            total.tilesCulled += c.tilesCulled, total.shadedSpans += c.shadedSpans, total.compressedSamples += c.compressedSamples;
+            total.maxResolved = std::max(total.maxResolved, c.maxResolved);
+            total.roots.add(c.roots);
+            total.misorderedTime += c.misorderedTime, total.coveredPairTime += c.coveredPairTime;
+            total.intervalSeconds += c.intervalSeconds, total.resolveSeconds += c.resolveSeconds, total.shadeSeconds += c.shadeSeconds;
+        }
+        RenderStats& stats = context.stats;
+        // Tile work runs on all threads at once: split the tiles' wall time by thread time.
+        const double threadTime = total.intervalSeconds + total.resolveSeconds + total.shadeSeconds;
+        const double scale = threadTime > 0.0 ? stats.time("tiles") / threadTime : 0.0;
+        stats.addTime("intervals", total.intervalSeconds * scale);
+        stats.addTime("resolve", total.resolveSeconds * scale);
+        stats.addTime("shade", total.shadeSeconds * scale);
+
+        const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
+        stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
+        stats.setCounter("triangle_segments", double(frame.bounds.size()));
+        stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
+        stats.setCounter("backface_intervals_culled", double(total.culledBackFacing));
+        stats.setCounter("intervals", double(total.intervals));
+        stats.setCounter("intervals_per_sample_mean", double(total.intervals) / numSamples);
+        stats.setCounter("intervals_per_sample_max", double(total.maxIntervals));
+        stats.setCounter("max_intervals", m_options.maxIntervals);
+        stats.setCounter("compressed_samples", double(total.compressedSamples));
+        stats.setCounter("resolved_intervals_max", double(total.maxResolved));
+        stats.setCounter("merges", double(total.merges));
+        stats.setCounter("tile_tests", double(total.tileTests));
+        stats.setCounter("tiles_culled", double(total.tilesCulled));
+        stats.setCounter("shaded_spans", double(total.shadedSpans));
+        stats.setCounter("roots_constant", double(total.roots.constant));
+        stats.setCounter("roots_linear", double(total.roots.linear));
+        stats.setCounter("roots_none", double(total.roots.noRealRoot));
+        stats.setCounter("roots_double", double(total.roots.doubleRoot));
+        stats.setCounter("roots_two", double(total.roots.twoRoots));
+        if (m_options.checkDepthOrder) {
+            stats.setCounter("depth_overlap_time", total.coveredPairTime);
+            stats.setCounter("depth_misordered_time", total.misorderedTime);
+            stats.setCounter("depth_misordered_fraction", total.coveredPairTime > 0.0 ? total.misorderedTime / total.coveredPairTime : 0.0);
+        }
+
+        Image result(settings.width, settings.height);
+        std::copy(image.begin(), image.end(), result.pixels().begin());
+        return result;
+    }
+
+private:
+    struct Frame {
+        const Scene& scene;
+        const RenderSettings& settings;
+        const Options& options;
+        raster::Viewport viewport;
+        raster::SamplePattern pattern;
+        std::optional<exposure::SegmentedGeometry> segmented;
+        SpanShadingSettings spanShading;
+        std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
+
+        // Traversal covers only the screen box of a segment over its time: with all corners in
+        // front of the eye, each corner's screen path is a straight segment between its ends, so
+        // the box of the six projected corners holds the triangle at every time. A segment
+        // reaching behind the eye may cover anything.
+        void computeBounds() {
+            const auto segments = segmented->segments();
+            bounds.resize(segments.size());
+            tbb::parallel_for(std::size_t(0), segments.size(), [&](std::size_t i) {
+                const exposure::TriangleSegment& s = segments[i];
+                raster::PixelBounds& b = bounds[i];
+                if (s.isBackFacingThroughout) {
+                    b = {};
+                    return;
+                }
+                if (!s.isInFront()) {
+                    b = {0, 0, viewport.width - 1, viewport.height - 1};
+                    return;
+                }
+                glm::dvec2 lo(1e300), hi(-1e300);
+                for (const auto* corners : {&s.clip0, &s.clip1})
+                    for (const glm::vec4& c : *corners) {
+                        const glm::dvec2 raster((double(c.x) / c.w + 1.0) * 0.5 * viewport.width, (1.0 - double(c.y) / c.w) * 0.5 * viewport.height);
+                        lo = glm::min(lo, raster), hi = glm::max(hi, raster);
+                    }
+                b.x0 = int(std::clamp(std::floor(lo.x), 0.0, double(viewport.width)));
+                b.y0 = int(std::clamp(std::floor(lo.y), 0.0, double(viewport.height)));
+                b.x1 = int(std::clamp(std::floor(hi.x), -1.0, double(viewport.width - 1)));
+                b.y1 = int(std::clamp(std::floor(hi.y), -1.0, double(viewport.height - 1)));
+            });
+        }
+    };
+
+    // True when the segment keeps one orientation and stays outside one of its edges over the
+    // whole rectangle (NDC corners lo, hi) for its whole time. An edge function is linear in
+    // the point, so over the rectangle it peaks at a corner; at each corner it is a quadratic
+    // in u, whose largest value on [0, 1] is at an end or its vertex.
+    static bool isOutsideTile(const exposure::TriangleSegment& s, const raster::MovingTriangle& moving, const glm::dvec2& lo,
+                              const glm::dvec2& hi) {
+        if (!s.isInFront()) return false;
+        double orientation = 0.0;
+        if (raster::isBackFacingThroughout(s.clip0, s.clip1)) orientation = -1.0;
+        else if (raster::isBackFacingThroughout({s.clip0[0], s.clip0[2], s.clip0[1]}, {s.clip1[0], s.clip1[2], s.clip1[1]})) orientation = 1.0;
+        else return false;
+        const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+        for (int e = 0; e < 3; ++e) {
+            bool outside = true;
+            for (const glm::dvec2& c : corners) {
+                raster::Quadratic q = moving.edgeFunction(e, c);
+                q.a *= orientation, q.b *= orientation, q.c *= orientation;
+                if (maxOnUnitInterval(q) >= 0.0) {
+                    outside = false;
+                    break;
+                }
+            }
+            if (outside) return true;
+        }
+        return false;
+    }
+
+    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+        using Clock = std::chrono::steady_clock;
+        const raster::PixelBounds rect = grid.tileBounds(tile);
+        const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
+        const int spp = frame.pattern.count();
+        const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
+        const Scene& scene = frame.scene;
+        const auto segments = frame.segmented->segments();
+        const auto& triangles = frame.segmented->flat().triangles();
+        const int width = frame.viewport.width, height = frame.viewport.height;
+        Counters& counters = scratch.counters;
+
+        // Intervals: every sample in each segment's box solves the segment's edge equations.
+        auto start = Clock::now();
+        scratch.records.clear();
+        const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
+        const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
+        for (const std::uint32_t index : grid.items(tile)) {
+            const exposure::TriangleSegment& segment = segments[index];
+            const raster::PixelBounds& box = frame.bounds[index];
+            const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
+                                             std::min(box.y1, rect.y1)};
+            if (region.empty()) continue;
+            const raster::MovingTriangle moving(segment.clip0, segment.clip1);
+            if (frame.options.tileCull) {
+                ++counters.tileTests;
+                if (isOutsideTile(segment, moving, tileLo, tileHi)) {
+                    ++counters.tilesCulled;
+                    continue;
+                }
+            }
+            const FlatTriangle& tri = triangles[segment.triangle];
+            // Depth on the triangle is a convex combination of its corners' depths, so only a
+            // segment reaching nearer than the near plane needs the depth check.
+            const bool checkNearPlane = !(segment.isInFront() && segment.nearness <= 1.0f / scene.camera.zNear);
+            for (int py = region.y0; py <= region.y1; ++py)
+                for (int px = region.x0; px <= region.x1; ++px)
+                    for (int s = 0; s < spp; ++s) {
+                        const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
+                        std::array<double, 8> b;
+                        const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
+                        for (int k = 0; k + 1 < n; k += 2) {
+                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc), s1 = moving.sample(b[k + 1], ndc);
+                            // The triangle cannot turn over inside a span (its edges would have to
+                            // pass the sample), so its facing at mid-span is its facing throughout.
+                            if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
+                                ++counters.culledBackFacing;
+                                continue;
+                            }
+                            Record r;
+                            r.sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                            const double dt = double(segment.t1) - double(segment.t0);
+                            r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
+                            r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
+                            r.interval.source = index;
+                            scratch.records.push_back(r);
+                        }
+                    }
+        }
+        raster::groupBySample(std::span<const Record>(scratch.records), numSamples, scratch.runs, scratch.bySample);
+        const std::vector<std::uint32_t>& runs = scratch.runs;
+        counters.intervalSeconds += secondsSince(start);
+
+        // Per sample: shade what must be known before the resolve (translucent opacity; every
+        // colour when compressing, for the oracle), compress, resolve exactly, shade what shows.
+        scratch.color.resize(numSamples);
+        const int budget = frame.options.maxIntervals;
+        for (std::size_t i = 0; i < numSamples; ++i) {
+            const std::uint32_t begin = runs[i], end = runs[i + 1];
+            if (begin == end) {
+                scratch.color[i] = scene.background;
+                continue;
+            }
+            start = Clock::now();
+            const int pixel = int(i / spp);
+            const glm::dvec2 ndc = frame.pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), width, height);
+            std::vector<ExposureInterval>& list = scratch.list;
+            list.clear();
+            for (std::uint32_t k = begin; k < end; ++k) list.push_back(scratch.bySample[k].interval);
+            counters.intervals += std::int64_t(list.size());
+            counters.maxIntervals = std::max(counters.maxIntervals, std::int64_t(list.size()));
+            const bool isCompressing = budget > 0 && int(list.size()) > budget;
+            for (ExposureInterval& interval : list) {
+                const std::uint32_t triangle = segments[interval.source].triangle;
+                if (isCompressing || scene.materials[triangles[triangle].material].isTranslucent()) shade(frame, interval, ndc);
+            }
+            if (isCompressing) {
+                ++counters.compressedSamples;
+                counters.merges += analytic::compressIntervals(list, budget, frame.options.oracle);
+            }
+            counters.maxResolved = std::max(counters.maxResolved, std::int64_t(list.size()));
+            scratch.weights.resize(list.size());
+            const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
+            float backgroundWeight = 0.0f;
+            if (hasTranslucency) {
+                backgroundWeight = analytic::resolveTranslucent(list, scratch.weights);
+            } else if (frame.options.checkDepthOrder) {
+                const analytic::ExactDepth exactDepth = [&](std::size_t k, float t) {
+                    const exposure::TriangleSegment& s = segments[list[k].source];
+                    return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
+                };
+                backgroundWeight = analytic::resolveOpaque(list, scratch.weights, &exactDepth, &counters.misorderedTime);
+                counters.coveredPairTime += overlapTime(list);
+            } else {
+                backgroundWeight = analytic::resolveOpaque(list, scratch.weights);
+            }
+            const auto resolved = Clock::now();
+            counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
+
+            glm::vec3 sum = scene.background * backgroundWeight;
+            scratch.pieces.clear();
+            for (std::size_t k = 0; k < list.size(); ++k) {
+                if (scratch.weights[k] <= 0.0f) continue;
+                if (list[k].isShaded) {
+                    sum += list[k].color * scratch.weights[k];
+                    continue;
+                }
+                const bool isWhole = scratch.weights[k] >= list[k].duration() * (1.0f - 1e-5f);
+                scratch.pieces.push_back({segments[list[k].source].triangle, list[k].t0, list[k].t1, scratch.weights[k], isWhole});
+            }
+            exposure::mergeAbuttingPieces(scratch.pieces);
+            for (const exposure::VisiblePiece& piece : scratch.pieces)
+                sum += shadeSpan(frame, piece.triangle, piece.t0, piece.t1, ndc).color * piece.weight;
+            counters.shadedSpans += std::int64_t(scratch.pieces.size());
+            scratch.color[i] = sum;
+            counters.shadeSeconds += secondsSince(resolved);
+        }
+        for (int py = rect.y0; py <= rect.y1; ++py)
+            for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * width + px] = glm::vec3(0.0f);
+        raster::addTileToImage(rect, spp, scratch.color, 1.0f, image, width);
+    }
+
+    // Covered time in which two or more intervals overlap: where depth order matters.
+    static double overlapTime(const std::vector<ExposureInterval>& list) {
+        std::vector<float> cuts;
+        for (const ExposureInterval& x : list) cuts.push_back(x.t0), cuts.push_back(x.t1);
+        std::sort(cuts.begin(), cuts.end());
+        double time = 0.0;
+        for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+            const float tm = 0.5f * (cuts[c] + cuts[c + 1]);
+            int covering = 0;
+            for (const ExposureInterval& x : list) covering += x.t0 <= tm && x.t1 >= tm;
+            if (covering > 1) time += cuts[c + 1] - cuts[c];
+        }
+        return time;
+    }
+
+    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
+        return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc);
+    }
+
+    void shade(const Frame& frame, ExposureInterval& interval, const glm::dvec2& ndc) const {
+        const ShadedColor c = shadeSpan(frame, frame.segmented->segments()[interval.source].triangle, interval.t0, interval.t1, ndc);
+        interval.color = c.color, interval.alpha = c.alpha, interval.isShaded = true;
+    }
+
+    Options m_options;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
+    Options o;
+    o.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
+    const std::string weights = options.getString("oracle-weights", "");
+    if (!weights.empty()) {
+        std::istringstream in(weights);
+        float h[5];
+        char comma = ',';
+        for (int i = 0; i < 5; ++i) {
+            if (i > 0) in >> comma;
+            if (!(in >> h[i]) || comma != ',' || !(h[i] >= 0.0f))
+                throw Error("method 'analytic': oracle-weights must be five non-negative numbers h1,...,h5, got '" + weights + "'");
+        }
+        if (!(in >> std::ws).eof()) throw Error("method 'analytic': oracle-weights must be five numbers, got '" + weights + "'");
+        o.oracle = {h[0], h[1], h[2], h[3], h[4]};
+    }
+    o.tileCull = options.getInt("tile-cull", 1, 0, 1) != 0;
+    o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
+    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
+    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    return std::make_unique<AnalyticRenderer>(o);
+}
+
+}  // namespace streak

@@ -1,0 +1,133 @@
+#include "methods/analytic/exposure_interval.h"
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace streak::analytic {
+
+namespace {
+
+// The shutter cut at every interval end and wherever two intervals' depth lines cross inside
+// their common time, so that within a piece the depth order is fixed; with each piece's
+// covering intervals.
+template <class F>
+void forEachPiece(std::span<const ExposureInterval> intervals, std::vector<std::size_t>& covering, F&& f) {
+    std::vector<float> cuts;
+    cuts.reserve(2 * intervals.size() + 2);
+    cuts.push_back(0.0f), cuts.push_back(1.0f);
+    for (const ExposureInterval& i : intervals) cuts.push_back(std::clamp(i.t0, 0.0f, 1.0f)), cuts.push_back(std::clamp(i.t1, 0.0f, 1.0f));
+    for (std::size_t i = 0; i < intervals.size(); ++i)
+        for (std::size_t j = i + 1; j < intervals.size(); ++j) {
+            const ExposureInterval &a = intervals[i], &b = intervals[j];
+            const float lo = std::max(a.t0, b.t0), hi = std::min(a.t1, b.t1);
+            if (!(hi > lo)) continue;
+            const float dLo = a.depthAt(lo) - b.depthAt(lo), dHi = a.depthAt(hi) - b.depthAt(hi);
+            if ((dLo < 0.0f && dHi > 0.0f) || (dLo > 0.0f && dHi < 0.0f)) cuts.push_back(lo + (hi - lo) * dLo / (dLo - dHi));
+        }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const float a = cuts[c], b = cuts[c + 1];
+        covering.clear();
+        for (std::size_t i = 0; i < intervals.size(); ++i)
+            if (intervals[i].t0 <= a && intervals[i].t1 >= b) covering.push_back(i);
+        f(a, b);
+    }
+}
+
+}  // namespace
+
+float oracle(const ExposureInterval& a, const ExposureInterval& b, const OracleWeights& h) {
+    const ExposureInterval& first = a.t0 <= b.t0 ? a : b;
+    const ExposureInterval& second = a.t0 <= b.t0 ? b : a;
+    const float scale = std::max({std::abs(a.meanDepth()), std::abs(b.meanDepth()), 1e-6f});
+    const glm::vec3 dc = glm::abs(a.color - b.color);
+    return h.gap * std::max(second.t0 - first.t1, 0.0f) + h.depth * std::abs(a.meanDepth() - b.meanDepth()) / scale +
+           h.slope * std::abs(a.depthSlope() - b.depthSlope()) / scale + h.duration * (a.duration() + b.duration()) +
+           h.color * (dc.x + dc.y + dc.z);
+}
+
+ExposureInterval mergeIntervals(const ExposureInterval& a, const ExposureInterval& b) {
+    const ExposureInterval& first = a.t0 <= b.t0 ? a : b;
+    const ExposureInterval& last = a.t1 >= b.t1 ? a : b;
+    ExposureInterval m;
+    m.t0 = first.t0, m.t1 = last.t1;
+    m.depth0 = first.depth0, m.depth1 = last.depth1;
+    const float wa = a.duration(), wb = b.duration(), sum = wa + wb;
+    const float fa = sum > 0.0f ? wa / sum : 0.5f;
+    m.color = fa * a.color + (1.0f - fa) * b.color;
+    m.alpha = fa * a.alpha + (1.0f - fa) * b.alpha;
+    m.source = wa >= wb ? a.source : b.source;
+    m.isShaded = a.isShaded && b.isShaded;
+    m.isMerged = true;
+    return m;
+}
+
+int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, const OracleWeights& h) {
+    int merges = 0;
+    while (budget > 0 && int(intervals.size()) > budget) {
+        std::size_t bestI = 0, bestJ = 1;
+        float best = std::numeric_limits<float>::infinity();
+        for (std::size_t i = 0; i < intervals.size(); ++i)
+            for (std::size_t j = i + 1; j < intervals.size(); ++j) {
+                const float o = oracle(intervals[i], intervals[j], h);
+                if (o < best) best = o, bestI = i, bestJ = j;
+            }
+        intervals[bestI] = mergeIntervals(intervals[bestI], intervals[bestJ]);
+        intervals.erase(intervals.begin() + std::ptrdiff_t(bestJ));
+        ++merges;
+    }
+    return merges;
+}
+
+float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ExactDepth* exactDepth,
+                    double* misorderedTime) {
+    std::fill(weights.begin(), weights.end(), 0.0f);
+    float background = 0.0f;
+    std::vector<std::size_t> covering;
+    forEachPiece(intervals, covering, [&](float a, float b) {
+        if (covering.empty()) {
+            background += b - a;
+            return;
+        }
+        const float tm = 0.5f * (a + b);
+        std::size_t nearest = covering[0];
+        for (std::size_t i : covering)
+            if (intervals[i].depthAt(tm) < intervals[nearest].depthAt(tm)) nearest = i;
+        weights[nearest] += b - a;
+        if (exactDepth && misorderedTime && covering.size() > 1) {
+            std::size_t trueNearest = covering[0];
+            double trueDepth = (*exactDepth)(covering[0], tm);
+            for (std::size_t i : covering) {
+                const double d = (*exactDepth)(i, tm);
+                if (d < trueDepth) trueDepth = d, trueNearest = i;
+            }
+            if (trueNearest != nearest) *misorderedTime += b - a;
+        }
+    });
+    return background;
+}
+
+float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights) {
+    std::fill(weights.begin(), weights.end(), 0.0f);
+    float background = 0.0f;
+    std::vector<std::size_t> covering;
+    forEachPiece(intervals, covering, [&](float a, float b) {
+        const float tm = 0.5f * (a + b);
+        std::sort(covering.begin(), covering.end(),
+                  [&](std::size_t i, std::size_t j) { return intervals[i].depthAt(tm) < intervals[j].depthAt(tm); });
+        float transmittance = 1.0f;
+        for (std::size_t i : covering) {
+            weights[i] += (b - a) * transmittance * intervals[i].alpha;
+            transmittance *= 1.0f - intervals[i].alpha;
+            if (transmittance <= 0.0f) break;
+        }
+        background += (b - a) * transmittance;
+    });
+    return background;
+}
+
+}  // namespace streak::analytic
