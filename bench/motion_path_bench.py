@@ -18,45 +18,12 @@ usage: bench/motion_path_bench.py [--streak build/streak] [--sections quality,sw
                                   [--plot docs/motion_path_sweep.png] [--repeats 3]
 """
 import argparse
-import json
 import os
-import platform
-import re
-import subprocess
+import sys
 import tempfile
 
-SCENES = ["rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"]
-
-
-class Streak:
-    def __init__(self, binary, tmp, repeats):
-        self.binary, self.tmp, self.repeats = binary, tmp, repeats
-        self.stats = os.path.join(tmp, "stats.json")
-
-    def render(self, scene, method, out, size="256x192", args=(), repeats=None):
-        """Renders; returns (least render ms over the repeats, stats of the last run)."""
-        w, h = size.split("x")
-        best = None
-        for _ in range(repeats or self.repeats):
-            subprocess.run([self.binary, "render", scene, "-m", method, "--width", w, "--height", h, "-o", out,
-                            "--stats", self.stats, *args], check=True)
-            with open(self.stats) as f:
-                stats = json.load(f)
-            ms = stats["time_ms"]["render"]
-            best = ms if best is None else min(best, ms)
-        return best, stats
-
-    def psnr(self, a, b):
-        out = subprocess.run([self.binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
-        return float(re.search(r"PSNR: (\S+) dB", out).group(1))
-
-
-def machine():
-    cpu = "unknown CPU"
-    if os.path.exists("/proc/cpuinfo"):
-        m = re.search(r"model name\s*:\s*(.*)", open("/proc/cpuinfo").read())
-        cpu = m.group(1) if m else cpu
-    return f"{cpu}, {os.cpu_count()} cores ({platform.system()})"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchlib import SCENES, Streak, machine  # noqa: E402
 
 
 def quality(streak):
@@ -65,8 +32,7 @@ def quality(streak):
     print("|---|---:|---:|---:|---:|---:|")
     for name in SCENES:
         scene = "builtin:" + name
-        ref = os.path.join(streak.tmp, f"{name}-ref.exr")
-        streak.render(scene, "accumulation", ref, args=["--samples", "3000"], repeats=1)
+        ref = streak.reference(name)
         out = os.path.join(streak.tmp, "mp.exr")
         mp_ms, _ = streak.render(scene, "motion-path", out)
         target = streak.psnr(ref, out)
@@ -145,9 +111,7 @@ def params(streak):
     out = os.path.join(streak.tmp, "params.exr")
     for name in ["cubes", "rotating-cube"]:
         scene = "builtin:" + name
-        ref = os.path.join(streak.tmp, f"{name}-ref.exr")
-        if not os.path.exists(ref):
-            streak.render(scene, "accumulation", ref, args=["--samples", "3000"], repeats=1)
+        ref = streak.reference(name)
         configs = [(b, 16) for b in (32, 64, 128, 256)] + [(128, k) for k in (1, 4, 64)]
         for bits, k in configs:
             ms, _ = streak.render(scene, "motion-path", out, args=["--mask-bits", str(bits), "--texture-samples", str(k)])

@@ -14,19 +14,21 @@ namespace streak {
 // from the three moving edge equations (Gribel et al. 2010), with no pairing of approximate
 // fragments. Each span becomes an interval whose depth is taken at its ends. Intervals are
 // sorted in depth-time (split at crossings, then Hong & Oh's four tests) and resolved with time
-// masks. An interval's colour is the mean of k texture samples along it (section 4.4), lit by
-// Simpson's rule over its normals.
+// masks; only the visible ones are then shaded, with the texture averaged along the interval
+// (section 4.4) and the lighting averaged over it (scene/span_shading.h).
 //
 // Beyond the paper:
 // - The sides are conservative convex hulls rather than bilinear fans, so folding sides (fast
 //   rotation) lose no coverage.
-// - Interval times, depths, uvs and normals are exact.
-// - uv paths that bend are sampled at exact times, and slow intervals take fewer texture
-//   samples.
+// - Interval times, depths, uvs and normals are exact; texture taps sit at exact times, as
+//   many as the pixel footprint's mip level needs (at most k), and lighting follows turning
+//   normals.
+// - Shading is deferred to the visible pieces; abutting whole pieces of one triangle are shaded
+//   once.
 // - Single-sided triangles that face away for a whole segment are culled through a Bernstein
 //   bound on their orientation.
-// - K > 2 keys give one path per key segment; Bezier keys and a moving camera give four per key
-//   segment.
+// - K > 2 keys give one path per key segment; Bezier keys and a moving camera give
+//   curve-segments per key segment.
 // - Translucency uses per-slice transmittance.
 // - --aa N is supported.
 //
@@ -34,8 +36,10 @@ namespace streak {
 // - max-fragments: paths per sample, default 150. On overflow the nearest are kept.
 // - max-intervals: default 90. On overflow the nearest are kept.
 // - mask-bits: 32, 64, 128 or 256; default 128.
-// - texture-samples: at most k, default 16.
+// - texture-samples: at most k texture taps per interval, default 32.
+// - taps-per-texel: texture taps per texel of the footprint's mip level, default 2.
 // - sort: 1, or 0 for minimum-depth order only; default 1.
+// - curve-segments: linear pieces per key segment of curved screen motion, default 4.
 std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options);
 
 }  // namespace streak

@@ -1,0 +1,46 @@
+"""Shared pieces of the benchmark scripts: running streak and reading its figures."""
+import json
+import os
+import platform
+import re
+import subprocess
+
+SCENES = ["rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"]
+
+
+class Streak:
+    def __init__(self, binary, tmp, repeats):
+        self.binary, self.tmp, self.repeats = binary, tmp, repeats
+        self.stats = os.path.join(tmp, "stats.json")
+
+    def render(self, scene, method, out, size="256x192", args=(), repeats=None):
+        """Renders; returns (least render ms over the repeats, stats of the last run)."""
+        w, h = size.split("x")
+        best = None
+        for _ in range(repeats or self.repeats):
+            subprocess.run([self.binary, "render", scene, "-m", method, "--width", w, "--height", h, "-o", out,
+                            "--stats", self.stats, *args], check=True)
+            with open(self.stats) as f:
+                stats = json.load(f)
+            ms = stats["time_ms"]["render"]
+            best = ms if best is None else min(best, ms)
+        return best, stats
+
+    def reference(self, name, samples=3000):
+        """Accumulation with 3000 shutter times (Hong & Oh's reference) of builtin:name, rendered once."""
+        path = os.path.join(self.tmp, f"{name}-ref.exr")
+        if not os.path.exists(path):
+            self.render("builtin:" + name, "accumulation", path, args=["--samples", str(samples)], repeats=1)
+        return path
+
+    def psnr(self, a, b):
+        out = subprocess.run([self.binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
+        return float(re.search(r"PSNR: (\S+) dB", out).group(1))
+
+
+def machine():
+    cpu = "unknown CPU"
+    if os.path.exists("/proc/cpuinfo"):
+        m = re.search(r"model name\s*:\s*(.*)", open("/proc/cpuinfo").read())
+        cpu = m.group(1) if m else cpu
+    return f"{cpu}, {os.cpu_count()} cores ({platform.system()})"
