@@ -28,7 +28,7 @@ class Streak:
 
     def reference(self, name, samples=3000):
         """Accumulation with 3000 shutter times (Hong & Oh's reference) of builtin:name, rendered once."""
-        path = os.path.join(self.tmp, f"{name}-ref.exr")
+        path = os.path.join(self.tmp, re.sub(r"[^A-Za-z0-9.-]", "_", name) + "-ref.exr")
         if not os.path.exists(path):
             self.render("builtin:" + name, "accumulation", path, args=["--samples", str(samples)], repeats=1)
         return path

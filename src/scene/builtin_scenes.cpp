@@ -255,6 +255,7 @@ Scene makeTwist(OptionMap&) {
 // Thin bars sweeping several times their own width: the classic failure case of sampling.
 Scene makeFence(OptionMap& options) {
     const int bars = options.getInt("bars", 12, 1, 1000);
+    const float travel = float(options.getDouble("travel", 0.3, 0.0, 100.0));  // world units the bars move
     Scene scene = defaultSceneFrame("fence");
     scene.textures.push_back(gridTexture(256, 8, {200, 190, 170}, {70, 60, 50}));
     Material bar;
@@ -267,8 +268,8 @@ Scene makeFence(OptionMap& options) {
     for (int i = 0; i < bars; ++i)
         geometry.addQuad(glm::vec3((float(i) - 0.5f * float(bars - 1)) * spacing - 0.15f, 0.0f, 0.0f),
                          glm::vec3(0.025f, 0, 0), glm::vec3(0, 1.6f, 0));
-    scene.meshes.push_back(placeMesh(geometry, "bars", 1, 2, [](float t) {
-        return glm::translate(glm::mat4(1.0f), glm::vec3(0.3f * t, 0.0f, 0.0f));
+    scene.meshes.push_back(placeMesh(geometry, "bars", 1, 2, [travel](float t) {
+        return glm::translate(glm::mat4(1.0f), glm::vec3(travel * t, 0.0f, 0.0f));
     }));
     return scene;
 }
@@ -345,7 +346,7 @@ const std::array<BuiltinScene, 7> kScenes{{
     {{"rotating-cube", "one textured cube rotating about x, y and z; option keys=2"}, makeRotatingCube},
     {{"crossing", "two triangles passing through each other in depth"}, makeCrossing},
     {{"twist", "a triangle flipping over, its t=0 and t=1 projections crossing"}, makeTwist},
-    {{"fence", "thin bars moving fast over a textured wall; option bars=12"}, makeFence},
+    {{"fence", "thin bars moving fast over a textured wall; options bars=12, travel=0.3"}, makeFence},
     {{"pan", "static textured scene, moving camera"}, makePan},
     {{"translucent", "translucent moving quads over an opaque moving cube"}, makeTranslucent},
 }};

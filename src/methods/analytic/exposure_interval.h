@@ -32,7 +32,7 @@ struct ExposureInterval {
 // z mean depth and k depth slope (both relative to the larger mean depth, so the weights do not
 // depend on the scene's scale), d durations and c colours (sum of absolute RGB differences).
 struct OracleWeights {
-    float gap = 4.0f, depth = 1.0f, slope = 0.25f, duration = 0.25f, color = 1.0f;
+    float gap = 20.0f, depth = 1.0f, slope = 0.25f, duration = 0.25f, color = 1.0f;  // bench/analytic_bench.py
 };
 
 float oracle(const ExposureInterval& a, const ExposureInterval& b, const OracleWeights& h);
