@@ -6,16 +6,37 @@
 
 namespace streak::exposure {
 
+const raster::MovingTriangle& MovingTriangleCache::get(const SegmentedGeometry& geometry, std::uint32_t segment) {
+    if (m_slot.size() != geometry.segments().size()) {
+        m_slot.assign(geometry.segments().size(), -1);
+        m_triangles.clear(), m_used.clear();
+    }
+    std::int32_t& slot = m_slot[segment];
+    if (slot < 0) {
+        const TriangleSegment& s = geometry.segments()[segment];
+        slot = std::int32_t(m_triangles.size());
+        m_triangles.emplace_back(s.clip0, s.clip1);
+        m_used.push_back(segment);
+    }
+    return m_triangles[std::size_t(slot)];
+}
+
+void MovingTriangleCache::clear() {
+    for (const std::uint32_t segment : m_used) m_slot[segment] = -1;
+    m_used.clear();
+    m_triangles.clear();
+}
+
 TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle,
-                                           const glm::dvec2& ndc)
+                                           const glm::dvec2& ndc, MovingTriangleCache& cache)
     : m_geometry(geometry), m_pixel(2.0 / viewport.width, 2.0 / viewport.height), m_triangle(triangle), m_ndc(ndc),
-      m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])) {}
+      m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])), m_cache(cache) {}
 
 const TriangleSegment& TriangleSurfacePoint::select(float t) const {
     const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t);
     if (&segment != m_segment) {
         m_segment = &segment;
-        m_moving.emplace(segment.clip0, segment.clip1);
+        m_moving = &m_cache.get(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
         // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
         m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
         m_uvDenominator = {};
@@ -67,8 +88,9 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
 }
 
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
-                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) {
-    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, triangle, ndc), settings);
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
+                              MovingTriangleCache& cache) {
+    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, triangle, ndc, cache), settings);
 }
 
 }  // namespace streak::exposure

@@ -7,9 +7,25 @@
 
 #include <glm/vec2.hpp>
 
-#include <optional>
+#include <cstdint>
+#include <deque>
+#include <vector>
 
 namespace streak::exposure {
+
+// Each segment's MovingTriangle, built on first use and kept until clear(): a tile builds each
+// once however many samples and spans use it. One per thread.
+class MovingTriangleCache {
+public:
+    const raster::MovingTriangle& get(const SegmentedGeometry& geometry, std::uint32_t segment);
+    // Forgets what was built (cheaply: only the entries used).
+    void clear();
+
+private:
+    std::vector<std::int32_t> m_slot;  ///< per segment: index into m_triangles, or -1
+    std::deque<raster::MovingTriangle> m_triangles;  ///< a deque: references stay valid as it grows
+    std::vector<std::uint32_t> m_used;  ///< segments with a slot
+};
 
 // A triangle under one pixel sample at any time of the shutter, for span shading: exact
 // barycentrics from the moving edge equations of the segment holding that time, world position
@@ -17,7 +33,8 @@ namespace streak::exposure {
 // segment last used is kept, since taps come in time order.
 class TriangleSurfacePoint final : public MovingSurfacePoint {
 public:
-    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle, const glm::dvec2& ndc);
+    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle, const glm::dvec2& ndc,
+                         MovingTriangleCache& cache);
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
@@ -31,13 +48,15 @@ private:
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;
     mutable const TriangleSegment* m_segment = nullptr;  ///< the segment the members below belong to
-    mutable std::optional<raster::MovingTriangle> m_moving;
+    MovingTriangleCache& m_cache;
+    mutable const raster::MovingTriangle* m_moving = nullptr;
     mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
     mutable raster::Quadratic m_uvDenominator;
 };
 
 // The mean shaded colour and opacity of a triangle over [t0, t1] at a sample (shadeTimeSpan).
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
-                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc);
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
+                              MovingTriangleCache& cache);
 
 }  // namespace streak::exposure

@@ -56,6 +56,7 @@ struct TileScratch {
     std::vector<float> weights;
     std::vector<exposure::VisiblePiece> pieces;
     std::vector<glm::vec3> color;
+    exposure::MovingTriangleCache movingTriangles;  ///< the tile's segments' edge equations
     Counters counters;
 };
 
@@ -235,6 +236,7 @@ private:
         // Intervals: every sample in each segment's box solves the segment's edge equations.
         auto start = Clock::now();
         scratch.records.clear();
+        scratch.movingTriangles.clear();
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
         for (const std::uint32_t index : grid.items(tile)) {
@@ -243,7 +245,7 @@ private:
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
             if (region.empty()) continue;
-            const raster::MovingTriangle moving(segment.clip0, segment.clip1);
+            const raster::MovingTriangle& moving = scratch.movingTriangles.get(*frame.segmented, index);
             if (frame.options.tileCull) {
                 ++counters.tileTests;
                 if (isOutsideTile(segment, moving, tileLo, tileHi)) {
@@ -304,7 +306,7 @@ private:
             const bool isCompressing = budget > 0 && int(list.size()) > budget;
             for (ExposureInterval& interval : list) {
                 const std::uint32_t triangle = segments[interval.source].triangle;
-                if (isCompressing || scene.materials[triangles[triangle].material].isTranslucent()) shade(frame, interval, ndc);
+                if (isCompressing || scene.materials[triangles[triangle].material].isTranslucent()) shade(frame, interval, ndc, scratch.movingTriangles);
             }
             if (isCompressing) {
                 ++counters.compressedSamples;
@@ -342,7 +344,7 @@ private:
             }
             exposure::mergeAbuttingPieces(scratch.pieces);
             for (const exposure::VisiblePiece& piece : scratch.pieces)
-                sum += shadeSpan(frame, piece.triangle, piece.t0, piece.t1, ndc).color * piece.weight;
+                sum += shadeSpan(frame, piece.triangle, piece.t0, piece.t1, ndc, scratch.movingTriangles).color * piece.weight;
             counters.shadedSpans += std::int64_t(scratch.pieces.size());
             scratch.color[i] = sum;
             counters.shadeSeconds += secondsSince(resolved);
@@ -367,12 +369,14 @@ private:
         return time;
     }
 
-    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
-        return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc);
+    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
+                          exposure::MovingTriangleCache& cache) const {
+        return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc,
+                                           cache);
     }
 
-    void shade(const Frame& frame, ExposureInterval& interval, const glm::dvec2& ndc) const {
-        const ShadedColor c = shadeSpan(frame, frame.segmented->segments()[interval.source].triangle, interval.t0, interval.t1, ndc);
+    void shade(const Frame& frame, ExposureInterval& interval, const glm::dvec2& ndc, exposure::MovingTriangleCache& cache) const {
+        const ShadedColor c = shadeSpan(frame, frame.segmented->segments()[interval.source].triangle, interval.t0, interval.t1, ndc, cache);
         interval.color = c.color, interval.alpha = c.alpha, interval.isShaded = true;
     }
 

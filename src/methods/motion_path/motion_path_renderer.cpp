@@ -72,6 +72,7 @@ struct TileScratch {
     std::vector<exposure::VisiblePiece> spans;  ///< one sample's visible opaque pieces
     std::vector<float> events;
     std::vector<glm::vec3> color;
+    exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
     Counters counters;
 };
 
@@ -202,8 +203,8 @@ private:
             for (int i = 0; i < n; ++i) events.push_back(float(p.t0 + bounds[i] * (double(p.t1) - double(p.t0))));
         }
 
-        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc) const {
-            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, spanShading, triangle, t0, t1, ndc);
+        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, exposure::MovingTriangleCache& cache) const {
+            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, spanShading, triangle, t0, t1, ndc, cache);
         }
 
         const Scene& scene;
@@ -230,7 +231,7 @@ private:
             const exposure::TriangleSegment& path = frame.paths[fragments[i].path];
             const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
             const Material& material = frame.scene.materials[tri.material];
-            const raster::MovingTriangle moving(path.clip0, path.clip1);
+            const raster::MovingTriangle& moving = scratch.movingTriangles.get(frame.segmented, fragments[i].path);
             scratch.events.clear();
             frame.exactSpans(path, moving, ndc, scratch.events);
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
@@ -249,7 +250,7 @@ private:
                 interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
                 interval.source = fragments[i].path;
                 if (material.isTranslucent()) {
-                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc);
+                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc, scratch.movingTriangles);
                     interval.color = shaded.color, interval.alpha = shaded.alpha;
                 }
                 out.push_back(interval);
@@ -276,6 +277,7 @@ private:
 
         // Rasterize: every path face adds a fragment to each sample it covers.
         auto start = Clock::now();
+        scratch.movingTriangles.clear();
         scratch.fragments.clear();
         for (const std::uint32_t index : grid.items(tile)) {
             const raster::RasterTriangle& rt = frame.faces[index];
@@ -393,7 +395,7 @@ private:
             if (!spans.empty()) {
                 exposure::mergeAbuttingPieces(spans);
                 const glm::dvec2 ndc = sampleNdc(frame, rect, i);
-                for (const exposure::VisiblePiece& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc).color * span.weight;
+                for (const exposure::VisiblePiece& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc, scratch.movingTriangles).color * span.weight;
                 counters.shadedIntervals += std::int64_t(spans.size());
             }
             scratch.color[i] = sum;
