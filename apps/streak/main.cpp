@@ -94,7 +94,7 @@ glm::vec3 parseColor(const std::string& text) {
 
 struct RenderArgs {
     std::string scene = "builtin:cubes";
-    std::string method = "accumulation";
+    std::string method = "motion-path";
     std::string output = "streak.png";
     int width = 1024;
     int height = 768;

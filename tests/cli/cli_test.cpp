@@ -77,7 +77,12 @@ TEST(Cli, RenderWritesImageAndStats) {
 TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
     test::TempDir dir;
     const std::string out = dir.file("out.png");
-    const std::string ok = "builtin:crossing --width 16 --height 16 --samples 2 ";
+    const std::string ok = "builtin:crossing -m accumulation --width 16 --height 16 --samples 2 ";
+    {
+        // The base of the cases below is itself good input: each case fails for its own reason.
+        test::TempDir good;
+        EXPECT_EQ(runStreak(good, "render " + ok + "-o " + good.file("ok.png")).exitCode, 0);
+    }
     const std::vector<std::pair<std::string, std::string>> cases{
         {"unknown method", "render " + ok + "-m nosuch -o " + out},
         {"unknown scene", "render builtin:nosuch -o " + out},
@@ -85,7 +90,10 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"unknown scene option", "render builtin:cubes?size=3 -o " + out},
         {"zero width", "render builtin:crossing --width 0 -o " + out},
         {"negative height", "render builtin:crossing --height -5 -o " + out},
-        {"zero samples", "render builtin:crossing --samples 0 -o " + out},
+        {"zero samples", "render builtin:crossing -m accumulation --samples 0 -o " + out},
+        {"option a method does not take", "render builtin:crossing -m motion-path --samples 4 -o " + out},
+        {"malformed --option", "render builtin:crossing --option tile-cull -o " + out},
+        {"bad oracle weights", "render builtin:crossing -m analytic --option oracle-weights=1,2 -o " + out},
         {"negative samples", "render builtin:crossing -m stochastic --samples -3 -o " + out},
         {"zero aa", "render " + ok + "--aa 0 -o " + out},
         {"non-numeric width", "render builtin:crossing --width abc -o " + out},
