@@ -72,6 +72,14 @@ std::array<glm::vec2, 3> FlatGeometry::cornerUvs(const FlatTriangle& tri) const 
     return {mesh.uv(tri.vertices.x - base), mesh.uv(tri.vertices.y - base), mesh.uv(tri.vertices.z - base)};
 }
 
+glm::vec4 FlatGeometry::vertexColorAt(const FlatTriangle& tri, const glm::vec3& bary) const {
+    const Mesh& mesh = meshOf(tri);
+    if (!mesh.hasColors()) return glm::vec4(1.0f);
+    const std::uint32_t base = m_meshVertexOffset[tri.mesh];
+    return bary.x * mesh.colors[tri.vertices.x - base] + bary.y * mesh.colors[tri.vertices.y - base] +
+           bary.z * mesh.colors[tri.vertices.z - base];
+}
+
 SurfacePoint FlatGeometry::surfacePoint(const FlatTriangle& tri, const std::array<glm::vec3, 3>& corners,
                                         const std::array<glm::vec3, 3>& cornerNormals, const glm::vec3& bary,
                                         const glm::vec3& baryRight, const glm::vec3& baryDown, bool isFrontFacing) const {
@@ -85,6 +93,7 @@ SurfacePoint FlatGeometry::surfacePoint(const FlatTriangle& tri, const std::arra
     p.uv = uvAt(bary);
     p.duvdx = uvAt(baryRight) - p.uv;
     p.duvdy = uvAt(baryDown) - p.uv;
+    p.vertexColor = vertexColorAt(tri, bary);
     p.material = tri.material;
     p.isFrontFacing = isFrontFacing;
     return p;

@@ -5,6 +5,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cstdint>
@@ -41,6 +42,9 @@ public:
     std::array<glm::vec3, 3> cornerNormalsAt(const FlatTriangle& tri, float t) const;
 
     std::array<glm::vec2, 3> cornerUvs(const FlatTriangle& tri) const;
+    // The vertex colour at barycentrics `bary` (white for meshes without colours).
+    glm::vec4 vertexColorAt(const FlatTriangle& tri, const glm::vec3& bary) const;
+
     // What shading needs at a point with barycentrics `bary` (and the barycentrics one pixel
     // right and down, for the texture footprint) given the triangle's corners at that time.
     SurfacePoint surfacePoint(const FlatTriangle& tri, const std::array<glm::vec3, 3>& corners,

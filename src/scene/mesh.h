@@ -4,6 +4,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -15,8 +16,8 @@ namespace streak {
 
 // Mesh is a triangle mesh whose vertices move over the shutter as numKeys key poses in world
 // space (instancing, node animation and skinning are baked into the keys by whoever builds the
-// scene). Connectivity, uvs and material are fixed over the shutter. Per-key arrays are stored
-// key-major: positions[k * numVertices() + v].
+// scene). Connectivity, uvs, vertex colours and material are fixed over the shutter. Per-key
+// arrays are stored key-major: positions[k * numVertices() + v].
 struct Mesh {
     std::string name;
     int numKeys = 2;
@@ -24,12 +25,14 @@ struct Mesh {
     std::vector<glm::vec3> positions;    ///< world space, numKeys * numVertices
     std::vector<glm::vec3> normals;      ///< same layout as positions, or empty (flat shading)
     std::vector<glm::vec2> uvs;          ///< one per vertex, or empty (uv = 0)
+    std::vector<glm::vec4> colors;       ///< linear RGBA, one per vertex, or empty (white); multiplies the albedo
     std::vector<glm::uvec3> triangles;   ///< counter-clockwise front faces
     std::uint32_t material = 0;          ///< index into Scene::materials
 
     std::size_t numVertices() const { return numKeys > 0 ? positions.size() / std::size_t(numKeys) : 0; }
     bool hasNormals() const { return !normals.empty(); }
     bool hasUvs() const { return !uvs.empty(); }
+    bool hasColors() const { return !colors.empty(); }
     // True when every key equals the first: the mesh does not move.
     bool isStatic() const;
 
@@ -44,6 +47,7 @@ struct Mesh {
         return w.apply(normals.data() + vertex, numVertices());
     }
     glm::vec2 uv(std::uint32_t vertex) const { return hasUvs() ? uvs[vertex] : glm::vec2(0.0f); }
+    glm::vec4 color(std::uint32_t vertex) const { return hasColors() ? colors[vertex] : glm::vec4(1.0f); }
 };
 
 }  // namespace streak

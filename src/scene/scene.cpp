@@ -41,6 +41,7 @@ void checkMesh(const Mesh& mesh, std::size_t index, const Scene& scene) {
     if (mesh.hasNormals() && mesh.normals.size() != mesh.positions.size())
         throw Error(where + ": normals do not match positions");
     if (mesh.hasUvs() && mesh.uvs.size() != n) throw Error(where + ": uvs do not match vertices");
+    if (mesh.hasColors() && mesh.colors.size() != n) throw Error(where + ": colors do not match vertices");
     if (mesh.material >= scene.materials.size())
         throw Error(where + ": material " + std::to_string(mesh.material) + " does not exist");
     for (const glm::uvec3& tri : mesh.triangles)
@@ -51,9 +52,12 @@ void checkMesh(const Mesh& mesh, std::size_t index, const Scene& scene) {
 
 SceneCleanup validateScene(Scene& scene) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        const int tex = scene.materials[i].baseColorTexture;
+        const Material& material = scene.materials[i];
+        const int tex = material.baseColorTexture;
         if (tex >= int(scene.textures.size()))
             throw Error("material " + std::to_string(i) + ": texture " + std::to_string(tex) + " does not exist");
+        if (!(material.opacity >= 0.0f && material.opacity <= 1.0f) || !(material.alphaCutoff >= 0.0f && material.alphaCutoff <= 1.0f))
+            throw Error("material " + std::to_string(i) + ": opacity and alphaCutoff must be in [0, 1]");
     }
     SceneCleanup cleanup;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {

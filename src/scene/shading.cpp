@@ -7,17 +7,12 @@
 
 namespace streak {
 
-ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, float lod) {
+ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, float lod,
+                           const glm::vec4& vertexColor) {
     const Material& material = scene.materials[materialIndex];
-    ShadedColor result{material.baseColor, 1.0f};
-    float textureAlpha = 1.0f;
-    if (material.baseColorTexture >= 0) {
-        const glm::vec4 texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, lod);
-        result.color *= glm::vec3(texel);
-        textureAlpha = texel.w;
-    }
-    if (material.isTranslucent()) result.alpha = material.opacity * textureAlpha;
-    return result;
+    glm::vec4 texel(1.0f);
+    if (material.baseColorTexture >= 0) texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, lod);
+    return {material.baseColor * glm::vec3(texel) * glm::vec3(vertexColor), material.alphaOf(texel.w * vertexColor.w)};
 }
 
 PhongTerms phongTerms(const Scene& scene, const Material& material, const glm::vec3& position, glm::vec3 normal,
@@ -49,7 +44,7 @@ ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoin
     float lod = 0.0f;
     if (material.baseColorTexture >= 0)
         lod = scene.textures[std::size_t(material.baseColorTexture)].lodFromFootprint(point.duvdx, point.duvdy);
-    ShadedColor result = materialAlbedo(scene, point.material, point.uv, lod);
+    ShadedColor result = materialAlbedo(scene, point.material, point.uv, lod, point.vertexColor);
     if (mode == ShadingMode::Phong)
         result.color = lightPhong(scene, material, result.color, point.position, point.normal, point.isFrontFacing, eye);
     return result;

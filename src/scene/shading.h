@@ -4,6 +4,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 
@@ -21,21 +22,24 @@ struct SurfacePoint {
     glm::vec2 uv{0.0f};
     glm::vec2 duvdx{0.0f};     ///< uv change over one pixel to the right (texture footprint)
     glm::vec2 duvdy{0.0f};     ///< uv change over one pixel down
+    glm::vec4 vertexColor{1.0f}; ///< interpolated linear vertex colour; multiplies albedo and alpha
     std::uint32_t material = 0;
     bool isFrontFacing = true; ///< back faces of double-sided materials are lit from their side
 };
 
 struct ShadedColor {
     glm::vec3 color{0.0f};  ///< linear, not premultiplied
-    float alpha = 1.0f;     ///< opacity times texture alpha for translucent materials, else 1
+    float alpha = 1.0f;     ///< Material::alphaOf(texture alpha times vertex alpha): 1 when opaque
 };
 
 // The one shading function every CPU method calls, so methods differ only in visibility.
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);
 
-// Albedo and alpha only (base colour times texture), sampled at an explicit level of detail;
-// methods that average texture along a path (motion paths) pick their own lod.
-ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, float lod);
+// Albedo and alpha only (base colour times texture times vertex colour), sampled at an explicit
+// level of detail; methods that average texture along a path (motion paths) pick their own lod.
+// A Mask material's alpha is already cut to 0 or 1 here, so averages of it are coverage.
+ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, float lod,
+                           const glm::vec4& vertexColor = glm::vec4(1.0f));
 
 // Phong lighting split by what multiplies the albedo: colour = albedo * diffuse + specular.
 // Methods that average lighting and texture at different rates combine the two themselves.

@@ -99,8 +99,10 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const SpanLighting lighting = isLit ? SpanLighting(scene, material, t0, t1, ends, lightingTaps, point)
                                         : SpanLighting(scene, material, t0, t1, ends, 0, point);
 
+    // Vertex colours change slowly across a triangle: the one at mid-span serves the whole span.
+    const glm::vec4 vertexColor = ends[1].vertexColor;
     if (material.baseColorTexture < 0) {
-        const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, 0.0f);
+        const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, 0.0f, vertexColor);
         if (!isLit) return albedo;
         return {albedo.color * lighting.mean().diffuse + lighting.mean().specular, albedo.alpha};
     }
@@ -117,7 +119,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
     const QuadraticThrough<float> footprintLodAt(footprintLod[0], footprintLod[1], footprintLod[2]);
 
-    // Texel sums; the base colour and the material's opacity multiply them once at the end.
+    // Texel sums; the base colour and the vertex colour multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
     float alphaSum = 0.0f;
     int used = 0;
@@ -134,13 +136,13 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         } else {
             sum += glm::vec3(texel);
         }
-        alphaSum += texel.w;
+        // Each tap's alpha goes through the alpha mode: Mask taps are 0 or 1, their mean coverage.
+        alphaSum += material.alphaOf(texel.w * vertexColor.w);
         ++used;
     }
     if (used == 0) return {glm::vec3(0.0f), 0.0f};
     const float scale = 1.0f / float(used);
-    return {material.baseColor * sum * scale + specularSum * scale,
-            material.isTranslucent() ? material.opacity * alphaSum * scale : 1.0f};
+    return {material.baseColor * glm::vec3(vertexColor) * sum * scale + specularSum * scale, alphaSum * scale};
 }
 
 }  // namespace streak

@@ -105,17 +105,22 @@ TEST(ShadeTimeSpan, LightingOfATurningNormalMatchesABruteForceMean) {
 
 TEST(ShadeTimeSpan, OpacityIsTheMeanTextureAlphaTimesTheMaterials) {
     // Texture alpha 1 on the left half, 0 on the right; a path over the whole width at
-    // material opacity 0.5 gives 0.5 * 0.5.
+    // material opacity 0.5 gives 0.5 * 0.5. (Blend: an Opaque material ignores texture alpha.)
     Scene scene = test::emptyScene();
     std::vector<glm::vec4> texels(64);
     for (int x = 0; x < 64; ++x) texels[std::size_t(x)] = glm::vec4(1.0f, 1.0f, 1.0f, x < 32 ? 1.0f : 0.0f);
     scene.textures.push_back(Texture::fromLinear(64, 1, std::move(texels), WrapMode::ClampToEdge, WrapMode::ClampToEdge));
     const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f), 0.5f);
     scene.materials[m].baseColorTexture = 0;
+    scene.materials[m].alphaMode = AlphaMode::Blend;
     ScriptedPoint point;
     point.uv = [](float t) { return glm::vec2(t, 0.5f); };
     point.footprint = glm::vec2(1.0f / 64.0f, 0.0f);
     EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point).alpha, 0.25f, 0.02f);
+    // Mask at cutoff 0.5: each tap's alpha is 0 or 1 (0.5 * 1 passes, 0.5 * 0 does not), so
+    // the span's alpha is the coverage, 0.5.
+    scene.materials[m].alphaMode = AlphaMode::Mask;
+    EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point).alpha, 0.5f, 0.04f);
 }
 
 }  // namespace streak
