@@ -83,6 +83,16 @@ void writeTextFile(const std::string& path, const std::string& text) {
     }
 }
 
+// "x,y,z" for the camera flags; negative values need the --flag=-1,2,3 form.
+glm::vec3 parseVec3(const std::string& text, const std::string& flag) {
+    glm::vec3 v;
+    char extra = 0;
+    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v.x, &v.y, &v.z, &extra) != 3 || !std::isfinite(v.x) || !std::isfinite(v.y) ||
+        !std::isfinite(v.z))
+        throw Error(flag + " must be three numbers x,y,z (write --flag=-1,2,3 for negative ones), got '" + text + "'");
+    return v;
+}
+
 glm::vec3 parseColor(const std::string& text) {
     glm::vec3 c;
     char extra = 0;
@@ -113,7 +123,57 @@ struct RenderArgs {
     std::uint64_t seed = 0;
     int threads = 0;
     std::string stats;
+    // glTF scenes only: the shutter in animation frames, the animation, its sampling, the camera.
+    std::optional<double> frame;
+    std::optional<double> shutter;
+    std::optional<double> fps;
+    std::optional<std::string> animation;
+    std::optional<int> motionKeys;
+    std::optional<int> camera;
+    std::optional<std::string> cameraPos;
+    std::optional<std::string> cameraTarget;
+    std::optional<std::string> cameraUp;
+    std::optional<std::string> cameraPosEnd;
+    std::optional<std::string> cameraTargetEnd;
+    std::optional<float> fov;
 };
+
+// The glTF options from the flags; Error for a flag given with a built-in scene or a camera
+// flag without the ones it needs.
+GltfOptions gltfOptions(const RenderArgs& args) {
+    const bool isGltf = isGltfSpec(args.scene);
+    const std::pair<const char*, bool> flags[] = {
+        {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
+        {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()}, {"--camera", args.camera.has_value()},
+        {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
+        {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
+        {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
+    for (const auto& [flag, given] : flags)
+        if (given && !isGltf) throw Error(std::string(flag) + " applies to glTF scenes (.gltf, .glb) only");
+    GltfOptions options;
+    options.frame = args.frame.value_or(options.frame);
+    options.shutter = args.shutter.value_or(options.shutter);
+    options.fps = args.fps.value_or(options.fps);
+    options.animation = args.animation.value_or("");
+    options.motionKeys = args.motionKeys.value_or(options.motionKeys);
+    options.camera = args.camera;
+    options.aspect = float(args.width) / float(args.height);
+    const bool hasLookAtFlag = args.cameraUp || args.cameraPosEnd || args.cameraTargetEnd || args.fov;
+    if (args.cameraPos.has_value() != args.cameraTarget.has_value() || (hasLookAtFlag && !args.cameraPos))
+        throw Error("an explicit camera needs both --camera-pos and --camera-target");
+    if (args.cameraPos) {
+        if (args.camera) throw Error("--camera and --camera-pos cannot both be given");
+        GltfLookAt look;
+        look.position = parseVec3(*args.cameraPos, "--camera-pos");
+        look.target = parseVec3(*args.cameraTarget, "--camera-target");
+        if (args.cameraUp) look.up = parseVec3(*args.cameraUp, "--camera-up");
+        if (args.cameraPosEnd) look.positionEnd = parseVec3(*args.cameraPosEnd, "--camera-pos-end");
+        if (args.cameraTargetEnd) look.targetEnd = parseVec3(*args.cameraTargetEnd, "--camera-target-end");
+        look.verticalFovDegrees = args.fov.value_or(look.verticalFovDegrees);
+        options.lookAt = look;
+    }
+    return options;
+}
 
 int runRender(const RenderArgs& args) {
     using Clock = std::chrono::steady_clock;
@@ -147,6 +207,7 @@ int runRender(const RenderArgs& args) {
         methodOptions.set(option.substr(0, equals), option.substr(equals + 1));
     }
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
+    const GltfOptions gltf = gltfOptions(args);
     checkWritable(args.output, true);
     if (!args.stats.empty()) checkWritable(args.stats, false);
 
@@ -158,7 +219,7 @@ int runRender(const RenderArgs& args) {
     SceneCleanup cleanup;
     {
         PhaseTimer timer(stats, "load");
-        scene = loadScene(args.scene);
+        scene = loadScene(args.scene, gltf, &stats);
         if (args.background) scene.background = parseColor(*args.background);
         cleanup = validateScene(scene);
     }
@@ -231,7 +292,8 @@ int run(int argc, char** argv) {
 
     RenderArgs renderArgs;
     CLI::App* render = app.add_subcommand("render", "render a scene with motion blur over the shutter [0,1]");
-    render->add_option("scene", renderArgs.scene, "scene: builtin:NAME[?key=value&...] (see 'streak scenes')")->capture_default_str();
+    render->add_option("scene", renderArgs.scene, "scene: builtin:NAME[?key=value&...] (see 'streak scenes') or a glTF 2.0 file (.gltf, .glb)")
+        ->capture_default_str();
     render->add_option("-m,--method", renderArgs.method, "motion-blur method (see 'streak methods')")->capture_default_str();
     render->add_option("-o,--output", renderArgs.output, "output image: .png (sRGB 8-bit) or .exr (linear float)")->capture_default_str();
     render->add_option("--width", renderArgs.width, "image width in pixels")->capture_default_str();
@@ -253,6 +315,18 @@ int run(int argc, char** argv) {
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
     render->add_option("--threads", renderArgs.threads, "worker threads (0: all cores)")->capture_default_str();
     render->add_option("--stats", renderArgs.stats, "write figures of the render (times, counters) as JSON to this file");
+    render->add_option("--frame", renderArgs.frame, "glTF: the shutter opens at this animation frame (0)");
+    render->add_option("--shutter", renderArgs.shutter, "glTF: frames the shutter stays open (0.5)");
+    render->add_option("--fps", renderArgs.fps, "glTF: frames per second of animation time (24)");
+    render->add_option("--animation", renderArgs.animation, "glTF: animation name or index (the first)");
+    render->add_option("--motion-keys", renderArgs.motionKeys, "glTF: key poses sampled over the shutter, more for curved motion (2)");
+    render->add_option("--camera", renderArgs.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
+    render->add_option("--camera-pos", renderArgs.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");
+    render->add_option("--camera-target", renderArgs.cameraTarget, "glTF: explicit camera target x,y,z");
+    render->add_option("--camera-up", renderArgs.cameraUp, "glTF: explicit camera up x,y,z (0,1,0)");
+    render->add_option("--camera-pos-end", renderArgs.cameraPosEnd, "glTF: camera position at shutter close (moves linearly)");
+    render->add_option("--camera-target-end", renderArgs.cameraTargetEnd, "glTF: camera target at shutter close");
+    render->add_option("--fov", renderArgs.fov, "glTF: explicit camera vertical field of view in degrees (45)");
 
     std::string compareA, compareB, heatmap;
     CLI::App* compare = app.add_subcommand("compare", "print PSNR (dB) and SSIM of two images of the same size");

@@ -3,12 +3,20 @@
 #include "scene/builtin_scenes.h"
 #include "util/error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <string_view>
 
 namespace streak {
 
-Scene loadScene(const std::string& spec) {
+bool isGltfSpec(const std::string& spec) {
+    std::string extension = std::filesystem::path(spec).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return !spec.starts_with("builtin:") && (extension == ".gltf" || extension == ".glb");
+}
+
+Scene loadScene(const std::string& spec, const GltfOptions& gltf, RenderStats* stats) {
     constexpr std::string_view kBuiltin = "builtin:";
     if (spec.starts_with(kBuiltin)) {
         const std::string_view rest = std::string_view(spec).substr(kBuiltin.size());
@@ -21,7 +29,8 @@ Scene loadScene(const std::string& spec) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(spec, ec))
         throw Error("cannot read scene '" + spec + "': no such file (built-in scenes are named builtin:NAME, see 'streak scenes')");
-    throw Error("cannot load scene '" + spec + "': only builtin:NAME scenes can be loaded by this version of streak");
+    if (!isGltfSpec(spec)) throw Error("cannot load scene '" + spec + "': streak reads glTF 2.0 files (.gltf, .glb) and builtin:NAME scenes");
+    return loadGltf(spec, gltf, stats);
 }
 
 }  // namespace streak

@@ -2,6 +2,8 @@
 
 #include "image/color.h"
 #include "image/image_io.h"
+#include "support/gltf_builder.h"
+#include "support/shared_scenes.h"
 #include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -45,6 +47,25 @@ RunResult runStreak(const test::TempDir& dir, const std::string& args) {
 
 int countLines(const std::string& text) { return int(std::count(text.begin(), text.end(), '\n')); }
 
+void writeFile(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+// A triangle in the z = 0 plane that slides from x = 0 to x = 2 over the first second.
+test::GltfBuilder slidingTriangle() {
+    test::GltfBuilder b;
+    nlohmann::json primitive;
+    primitive["attributes"]["POSITION"] = b.addFloats({-1, -1, 0, 1, -1, 0, 0, 1, 0}, "VEC3", 3);
+    b.addMeshNode(primitive);
+    nlohmann::json animation;
+    animation["samplers"] = nlohmann::json::array(
+        {{{"input", b.addFloats({0, 1}, "SCALAR", 1)}, {"output", b.addFloats({0, 0, 0, 2, 0, 0}, "VEC3", 3)}}});
+    animation["channels"] = nlohmann::json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}});
+    animation["name"] = "slide";
+    b.json()["animations"] = nlohmann::json::array({animation});
+    return b;
+}
+
 }  // namespace
 
 TEST(Cli, ScenesListsEveryBuiltinSceneOnePerLine) {
@@ -78,12 +99,49 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
     test::TempDir dir;
     const std::string out = dir.file("out.png");
     const std::string ok = "builtin:crossing -m accumulation --width 16 --height 16 --samples 2 ";
+    // glTF inputs live in a folder of their own: `dir` must stay empty.
+    test::TempDir inputs;
+    const std::string triangle = inputs.file("triangle.glb");
+    writeFile(triangle, slidingTriangle().glb());
+    std::vector<std::uint8_t> truncated = slidingTriangle().glb();
+    truncated.resize(truncated.size() / 2);
+    writeFile(inputs.file("truncated.glb"), truncated);
+    writeFile(inputs.file("malformed.gltf"), {'{', '"', 'a'});
+    nlohmann::json missingBuffer = nlohmann::json::parse(slidingTriangle().gltf());
+    missingBuffer["buffers"][0]["uri"] = "missing.bin";
+    const std::string missingBufferText = missingBuffer.dump();
+    writeFile(inputs.file("missing-buffer.gltf"), {missingBufferText.begin(), missingBufferText.end()});
+    test::GltfBuilder badIndex = slidingTriangle();
+    badIndex.json()["meshes"][0]["primitives"][0]["indices"] = badIndex.addIndices({0, 1, 5});
+    writeFile(inputs.file("bad-index.glb"), badIndex.glb());
+    test::GltfBuilder required = slidingTriangle();
+    required.json()["extensionsRequired"] = {"EXT_meshopt_compression"};
+    writeFile(inputs.file("required.gltf"), required.gltfBytes());
+    const std::string glb = triangle + " -m accumulation --width 16 --height 16 --samples 2 ";
     {
-        // The base of the cases below is itself good input: each case fails for its own reason.
+        // The bases of the cases below are themselves good input: each case fails for its own reason.
         test::TempDir good;
         EXPECT_EQ(runStreak(good, "render " + ok + "-o " + good.file("ok.png")).exitCode, 0);
+        EXPECT_EQ(runStreak(good, "render " + glb + "-o " + good.file("glb.png")).exitCode, 0);
     }
     const std::vector<std::pair<std::string, std::string>> cases{
+        {"truncated glb", "render " + inputs.file("truncated.glb") + " -o " + out},
+        {"malformed gltf", "render " + inputs.file("malformed.gltf") + " -o " + out},
+        {"missing buffer", "render " + inputs.file("missing-buffer.gltf") + " -o " + out},
+        {"index out of range", "render " + inputs.file("bad-index.glb") + " -o " + out},
+        {"unsupported required extension", "render " + inputs.file("required.gltf") + " -o " + out},
+        {"unknown animation", "render " + glb + "--animation walk -o " + out},
+        {"one motion key", "render " + glb + "--motion-keys 1 -o " + out},
+        {"negative shutter", "render " + glb + "--shutter=-1 -o " + out},
+        {"zero fps", "render " + glb + "--fps 0 -o " + out},
+        {"missing camera", "render " + glb + "--camera 0 -o " + out},
+        {"camera pos without target", "render " + glb + "--camera-pos 0,0,5 -o " + out},
+        {"camera pos of two numbers", "render " + glb + "--camera-pos 0,5 --camera-target 0,0,0 -o " + out},
+        {"camera target equals pos", "render " + glb + "--camera-pos 0,0,5 --camera-target 0,0,5 -o " + out},
+        {"fov out of range", "render " + glb + "--camera-pos 0,0,5 --camera-target 0,0,0 --fov 180 -o " + out},
+        {"camera and camera pos", "render " + glb + "--camera 0 --camera-pos 0,0,5 --camera-target 0,0,0 -o " + out},
+        {"glTF flag on a builtin scene", "render " + ok + "--frame 3 -o " + out},
+        {"unknown scene file type", "render " + inputs.file("triangle.glb") + ".obj -o " + out},
         {"unknown method", "render " + ok + "-m nosuch -o " + out},
         {"unknown scene", "render builtin:nosuch -o " + out},
         {"missing scene file", "render " + dir.file("missing.gltf") + " -o " + out},
@@ -114,6 +172,32 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
         EXPECT_TRUE(dir.entries().empty()) << "left a file behind";
     }
+}
+
+TEST(Cli, RendersGltfWithItsAnimationAndCameraFlags) {
+    // The sliding triangle seen from (0, 0, 5), and from (-1, 0, 5) with negative numbers in
+    // the --flag=value form, over frames 6 to 18 (the middle of the slide) with 3 keys.
+    test::TempDir dir;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string common = "render " + dir.file("triangle.glb") + " -m accumulation --width 32 --height 24 --samples 4 --threads 1 --frame 6 --shutter 12 "
+                               "--animation slide --motion-keys 3 ";
+    const RunResult plain = runStreak(dir, common + "-o " + dir.file("a.png") + " --stats " + dir.file("a.json"));
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_NE(readFile(dir.file("a.json")).find("\"gltf_instanced_primitives\": 1"), std::string::npos);
+    const RunResult moved = runStreak(dir, common + "--camera-pos=-1,0,5 --camera-target=-1,0,0 --camera-pos-end=0,0,5 --fov 50 -o " +
+                                               dir.file("b.png"));
+    ASSERT_EQ(moved.exitCode, 0) << moved.err;
+    EXPECT_EQ(readImage(dir.file("b.png")).width(), 32);
+}
+
+TEST(Cli, RendersASampleModelWithItsOwnCamera) {
+    STREAK_REQUIRE_SHARED_SCENES();
+    test::TempDir dir;
+    const RunResult r = runStreak(dir, "render " + test::sharedScene("AnimatedCube/glTF/AnimatedCube.gltf") +
+                                           " -m motion-path --width 48 --height 32 --frame 10 --shutter 2 -o " + dir.file("cube.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Image image = readImage(dir.file("cube.png"));
+    EXPECT_GT(image.at(24, 16).x, 0.05f);  // the cube fills the middle
 }
 
 TEST(Cli, CompareGivesInfinityForIdenticalAndTheHandComputedPsnr) {

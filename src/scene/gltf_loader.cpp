@@ -1,0 +1,722 @@
+#include "scene/gltf_loader.h"
+
+#include "scene/gltf_accessor.h"
+#include "scene/gltf_animation.h"
+#include "scene/gltf_deform.h"
+#include "scene/gltf_document.h"
+#include "util/error.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+namespace streak {
+
+namespace {
+
+using gltf::AccessorReader;
+
+constexpr int kMaxMotionKeys = 256;
+
+template <class Integer>
+std::string str(Integer i) { return std::to_string(i); }
+
+// Finite also as float: JSON numbers beyond float range would become infinities.
+bool isFinite(const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(float(v)); });
+}
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// The vertex data of one glTF primitive, read and checked once, however many nodes instance it.
+struct PrimitiveData {
+    gltf::PrimitiveGeometry geometry;
+    std::vector<glm::uvec3> triangles;
+    std::vector<glm::vec2> uvs;     ///< the base-colour texture's set, transformed; or empty
+    std::vector<glm::vec4> colors;  ///< COLOR_0, or empty
+    std::uint32_t material = 0;     ///< streak material
+    std::uint32_t numJointsUsed = 0;  ///< 1 + the largest joint index with a nonzero weight; 0 if none
+};
+
+// One (node, primitive) of the scene: it becomes one streak Mesh.
+struct Instance {
+    std::uint32_t node = 0;
+    int skin = -1;
+    const PrimitiveData* data = nullptr;
+    std::string name;
+};
+
+// A streak material made from a glTF one, and how its base-colour texture reads uvs.
+struct MaterialInfo {
+    std::uint32_t index = 0;
+    int texCoord = -1;             ///< the TEXCOORD_n set the texture reads; -1: untextured
+    glm::mat3 uvTransform{1.0f};   ///< KHR_texture_transform, as a 2D affine matrix
+};
+
+WrapMode wrapMode(int glMode, const std::string& what) {
+    switch (glMode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+    default: throw Error(what + ": unknown wrap mode " + str(glMode));
+    }
+}
+
+// KHR_texture_transform on a textureInfo: uv' = offset + rotation * (scale * uv), with the
+// extension's rotation convention (u' = cos u + sin v, v' = -sin u + cos v for unit scale).
+glm::mat3 textureTransform(const tinygltf::ExtensionMap& extensions, int& texCoord, const std::string& what) {
+    const auto it = extensions.find("KHR_texture_transform");
+    if (it == extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+    const tinygltf::Value& ext = it->second;
+    auto number = [&](const tinygltf::Value& v) {
+        if (!v.IsNumber()) throw Error(what + ": KHR_texture_transform has a non-number");
+        const double d = v.GetNumberAsDouble();
+        if (!std::isfinite(d)) throw Error(what + ": KHR_texture_transform has a non-finite number");
+        return float(d);
+    };
+    auto pair = [&](const char* key, glm::vec2 fallback) {
+        if (!ext.Has(key)) return fallback;
+        const tinygltf::Value& v = ext.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2) throw Error(what + ": KHR_texture_transform " + key + " is not two numbers");
+        return glm::vec2(number(v.Get(0)), number(v.Get(1)));
+    };
+    const glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
+    const float rotation = ext.Has("rotation") ? number(ext.Get("rotation")) : 0.0f;
+    if (ext.Has("texCoord")) {
+        const tinygltf::Value& v = ext.Get("texCoord");
+        if (!v.IsInt() || v.GetNumberAsInt() < 0) throw Error(what + ": KHR_texture_transform texCoord is not a set index");
+        texCoord = v.GetNumberAsInt();
+    }
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    // Columns: u axis, v axis, offset.
+    return glm::mat3(glm::vec3(c * scale.x, -s * scale.x, 0.0f), glm::vec3(s * scale.y, c * scale.y, 0.0f), glm::vec3(offset, 1.0f));
+}
+
+// A camera pose from a node's world matrix: its position and orthonormalized axes (a camera
+// looks down its local -z with +y up, in glTF as in streak). Scale is dropped.
+CameraPose poseFromMatrix(const glm::mat4& m, const std::string& what) {
+    const glm::vec3 y(m[1]), z(m[2]);
+    const glm::vec3 x = glm::cross(y, z);
+    if (!(glm::length(x) > 0.0f) || !(glm::length(z) > 0.0f) || !isFinite(glm::vec3(m[3])))
+        throw Error(what + ": its node's transform is degenerate");
+    const glm::vec3 zAxis = glm::normalize(z), xAxis = glm::normalize(glm::cross(y, zAxis)), yAxis = glm::cross(zAxis, xAxis);
+    CameraPose pose;
+    pose.position = glm::vec3(m[3]);
+    pose.worldFromCamera = glm::normalize(glm::quat_cast(glm::mat3(xAxis, yAxis, zAxis)));
+    return pose;
+}
+
+class SceneBuilder {
+public:
+    SceneBuilder(const gltf::Document& document, const GltfOptions& options, RenderStats* stats)
+        : m_document(document),
+          m_model(document.model),
+          m_options(options),
+          m_stats(stats),
+          m_reader(document.model, std::min(options.limits.maxVertexWork, std::size_t(1) << 31)),
+          m_documentLimits{options.allowExternalFiles, options.limits.maxFileBytes, options.limits.maxTexels} {}
+
+    Scene build() {
+        checkOptions();
+        readNodes();
+        chooseSceneNodes();
+        readAnimation();
+        collectInstances();
+        sampleKeys();
+        placeCamera();
+        if (m_stats) {
+            m_stats->setCounter("gltf_instanced_primitives", double(m_instances.size()));
+            m_stats->setCounter("gltf_skipped_primitives", double(m_numSkipped));
+        }
+        return std::move(m_scene);
+    }
+
+private:
+    void checkOptions() {
+        const GltfOptions& o = m_options;
+        if (!std::isfinite(o.frame)) throw Error("--frame must be a finite number");
+        if (!(o.shutter >= 0.0) || !std::isfinite(o.shutter)) throw Error("--shutter must be 0 or more frames");
+        if (!(o.fps > 0.0) || !std::isfinite(o.fps)) throw Error("--fps must be positive");
+        if (o.motionKeys < 2 || o.motionKeys > kMaxMotionKeys)
+            throw Error("--motion-keys must be in [2, " + str(kMaxMotionKeys) + "], got " + str(o.motionKeys));
+        if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
+        if (o.camera && o.lookAt) throw Error("a glTF camera and an explicit camera cannot both be given");
+        const double t0 = o.frame / o.fps, t1 = (o.frame + o.shutter) / o.fps;
+        for (int k = 0; k < o.motionKeys; ++k) m_keyTimes.push_back(float(t0 + (t1 - t0) * double(k) / double(o.motionKeys - 1)));
+    }
+
+    // Nodes with their parents, checking that the hierarchy is a forest and transforms are finite.
+    void readNodes() {
+        const std::size_t n = m_model.nodes.size();
+        m_nodes.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const tinygltf::Node& src = m_model.nodes[i];
+            const std::string what = "node " + str(i);
+            gltf::Node& node = m_nodes[i];
+            for (const int child : src.children) {
+                if (child < 0 || std::size_t(child) >= n) throw Error(what + ": child " + str(child) + " does not exist");
+                if (m_nodes[std::size_t(child)].parent >= 0 || std::size_t(child) == i)
+                    throw Error("node " + str(child) + " has more than one parent");
+                m_nodes[std::size_t(child)].parent = int(i);
+            }
+            if (!isFinite(src.matrix) || !isFinite(src.translation) || !isFinite(src.rotation) || !isFinite(src.scale))
+                throw Error(what + ": transform has a non-finite number");
+            if (!src.matrix.empty()) {
+                if (src.matrix.size() != 16) throw Error(what + ": matrix does not have 16 numbers");
+                node.hasMatrix = true;
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r) node.matrix[c][r] = float(src.matrix[std::size_t(c * 4 + r)]);
+            }
+            if (!src.translation.empty()) {
+                if (src.translation.size() != 3) throw Error(what + ": translation does not have 3 numbers");
+                node.translation = glm::vec3(float(src.translation[0]), float(src.translation[1]), float(src.translation[2]));
+            }
+            if (!src.rotation.empty()) {
+                if (src.rotation.size() != 4) throw Error(what + ": rotation does not have 4 numbers");
+                const glm::quat q(float(src.rotation[3]), float(src.rotation[0]), float(src.rotation[1]), float(src.rotation[2]));
+                if (!(glm::length(q) > 0.0f)) throw Error(what + ": rotation is not a unit quaternion");
+                node.rotation = glm::normalize(q);
+            }
+            if (!src.scale.empty()) {
+                if (src.scale.size() != 3) throw Error(what + ": scale does not have 3 numbers");
+                node.scale = glm::vec3(float(src.scale[0]), float(src.scale[1]), float(src.scale[2]));
+            }
+            if (src.mesh >= 0) {
+                const int numTargets = this->numTargets(src.mesh);
+                const std::vector<double>& weights = !src.weights.empty() ? src.weights : m_model.meshes[std::size_t(src.mesh)].weights;
+                if (!weights.empty() && weights.size() != std::size_t(numTargets))
+                    throw Error(what + ": has " + str(weights.size()) + " morph weights for " + str(numTargets) + " targets");
+                if (!isFinite(weights)) throw Error(what + ": morph weights have a non-finite number");
+                node.weights.assign(std::size_t(numTargets), 0.0f);
+                for (std::size_t w = 0; w < weights.size(); ++w) node.weights[w] = float(weights[w]);
+            }
+        }
+        // Each node has at most one parent, so a cycle is a walk upwards that meets itself. A
+        // walk stops at a node an earlier walk visited: all above it is known to be acyclic.
+        std::vector<std::size_t> walk(n, 0);
+        for (std::size_t start = 0; start < n; ++start) {
+            for (int i = int(start); i >= 0; i = m_nodes[std::size_t(i)].parent) {
+                if (walk[std::size_t(i)] == start + 1) throw Error("node hierarchy has a cycle through node " + str(i));
+                if (walk[std::size_t(i)] != 0) break;
+                walk[std::size_t(i)] = start + 1;
+            }
+        }
+    }
+
+    // Morph targets of a mesh: every primitive must have the same number.
+    int numTargets(int mesh) {
+        if (mesh < 0 || std::size_t(mesh) >= m_model.meshes.size()) throw Error("mesh " + str(mesh) + " does not exist");
+        const auto& primitives = m_model.meshes[std::size_t(mesh)].primitives;
+        const std::size_t count = primitives.empty() ? 0 : primitives[0].targets.size();
+        for (const tinygltf::Primitive& p : primitives)
+            if (p.targets.size() != count) throw Error("mesh " + str(mesh) + ": primitives have different numbers of morph targets");
+        return int(count);
+    }
+
+    // The nodes of the default scene (scene 0 if none is named, every root if there are no scenes).
+    void chooseSceneNodes() {
+        std::vector<int> roots;
+        if (m_model.scenes.empty()) {
+            for (std::size_t i = 0; i < m_nodes.size(); ++i)
+                if (m_nodes[i].parent < 0) roots.push_back(int(i));
+        } else {
+            const int scene = m_model.defaultScene >= 0 ? m_model.defaultScene : 0;
+            if (std::size_t(scene) >= m_model.scenes.size()) throw Error("scene " + str(scene) + " does not exist");
+            roots = m_model.scenes[std::size_t(scene)].nodes;
+        }
+        m_isInScene.assign(m_nodes.size(), false);
+        std::vector<int> stack;
+        for (const int root : roots) {
+            if (root < 0 || std::size_t(root) >= m_nodes.size()) throw Error("scene node " + str(root) + " does not exist");
+            if (m_nodes[std::size_t(root)].parent >= 0) throw Error("scene node " + str(root) + " is not a root node");
+            if (m_isInScene[std::size_t(root)]) throw Error("scene lists node " + str(root) + " twice");
+            stack.push_back(root);
+            while (!stack.empty()) {
+                const int i = stack.back();
+                stack.pop_back();
+                m_isInScene[std::size_t(i)] = true;
+                for (const int child : m_model.nodes[std::size_t(i)].children) stack.push_back(child);
+            }
+        }
+    }
+
+    int chooseAnimation() const {
+        const auto& animations = m_model.animations;
+        const std::string& wanted = m_options.animation;
+        if (wanted.empty()) return animations.empty() ? -1 : 0;
+        for (std::size_t i = 0; i < animations.size(); ++i)
+            if (animations[i].name == wanted) return int(i);
+        if (std::all_of(wanted.begin(), wanted.end(), [](char c) { return c >= '0' && c <= '9'; }) && wanted.size() < 9) {
+            const int index = std::stoi(wanted);
+            if (std::size_t(index) < animations.size()) return index;
+        }
+        std::string known;
+        for (std::size_t i = 0; i < animations.size(); ++i)
+            known += (i ? ", " : "") + str(i) + (animations[i].name.empty() ? "" : " '" + animations[i].name + "'");
+        throw Error("no animation '" + wanted + "' (" + (known.empty() ? "the file has none" : "it has " + known) + ")");
+    }
+
+    void readAnimation() {
+        const int index = chooseAnimation();
+        if (index < 0) return;
+        const tinygltf::Animation& src = m_model.animations[std::size_t(index)];
+        gltf::Animation animation;
+        animation.name = src.name;
+        // A sampler is read once per number of components its channels need.
+        std::map<std::pair<int, int>, std::uint32_t> samplerIndex;
+        for (std::size_t c = 0; c < src.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& channel = src.channels[c];
+            const std::string what = "animation " + str(index) + " channel " + str(c);
+            if (channel.target_node < 0) continue;  // targets something other than a node (an extension)
+            if (std::size_t(channel.target_node) >= m_nodes.size()) throw Error(what + ": node " + str(channel.target_node) + " does not exist");
+            const gltf::Node& node = m_nodes[std::size_t(channel.target_node)];
+            gltf::AnimationChannel out;
+            out.node = std::uint32_t(channel.target_node);
+            int numComponents = 3;
+            if (channel.target_path == "translation") out.path = gltf::AnimationPath::Translation;
+            else if (channel.target_path == "rotation") out.path = gltf::AnimationPath::Rotation, numComponents = 4;
+            else if (channel.target_path == "scale") out.path = gltf::AnimationPath::Scale;
+            else if (channel.target_path == "weights") out.path = gltf::AnimationPath::Weights, numComponents = int(node.weights.size());
+            else continue;  // e.g. "pointer" (KHR_animation_pointer): not ours
+            if (node.hasMatrix && out.path != gltf::AnimationPath::Weights) throw Error(what + ": animates node " + str(out.node) + ", which has a matrix");
+            if (numComponents == 0) throw Error(what + ": animates the weights of node " + str(out.node) + ", which has no morph targets");
+            const auto key = std::make_pair(channel.sampler, numComponents);
+            if (!samplerIndex.count(key)) {
+                samplerIndex[key] = std::uint32_t(animation.samplers.size());
+                animation.samplers.push_back(readSampler(src, channel.sampler, numComponents, "animation " + str(index) + " sampler " + str(channel.sampler),
+                                                         out.path == gltf::AnimationPath::Translation || out.path == gltf::AnimationPath::Scale));
+            }
+            out.sampler = samplerIndex[key];
+            animation.channels.push_back(out);
+        }
+        m_animation = std::move(animation);
+    }
+
+    gltf::AnimationSampler readSampler(const tinygltf::Animation& animation, int index, int numComponents, const std::string& what, bool isFloatOnly) {
+        if (index < 0 || std::size_t(index) >= animation.samplers.size()) throw Error(what + ": does not exist");
+        const tinygltf::AnimationSampler& src = animation.samplers[std::size_t(index)];
+        gltf::AnimationSampler sampler;
+        if (src.interpolation.empty() || src.interpolation == "LINEAR") sampler.interpolation = gltf::Interpolation::Linear;
+        else if (src.interpolation == "STEP") sampler.interpolation = gltf::Interpolation::Step;
+        else if (src.interpolation == "CUBICSPLINE") sampler.interpolation = gltf::Interpolation::CubicSpline;
+        else throw Error(what + ": unknown interpolation '" + src.interpolation + "'");
+        sampler.times = m_reader.readFloats(src.input, 1, gltf::kFloat, what + " input");
+        for (std::size_t k = 0; k < sampler.times.size(); ++k)
+            if (!std::isfinite(sampler.times[k]) || (k > 0 && sampler.times[k] < sampler.times[k - 1]))
+                throw Error(what + ": key times are not finite and increasing");
+        const int outputComponents = m_reader.numComponents(src.output, what + " output");
+        sampler.values = m_reader.readFloats(src.output, outputComponents, isFloatOnly ? gltf::kFloat : gltf::kFloatOrNormalized, what + " output");
+        sampler.numComponents = numComponents;
+        const std::size_t perKey = std::size_t(numComponents) * (sampler.interpolation == gltf::Interpolation::CubicSpline ? 3 : 1);
+        if (sampler.values.size() != sampler.times.size() * perKey)
+            throw Error(what + ": has " + str(sampler.values.size()) + " output values for " + str(sampler.times.size()) + " keys of " +
+                        str(perKey) + " values");
+        return sampler;
+    }
+
+    // Every (node, primitive) of the scene, with the totals checked against the limits before
+    // any vertex is read.
+    void collectInstances() {
+        std::size_t numTriangles = 0, vertexWork = 0;
+        const std::size_t numKeys = m_keyTimes.size();
+        for (std::size_t i = 0; i < m_nodes.size(); ++i) {
+            const tinygltf::Node& node = m_model.nodes[i];
+            if (!m_isInScene[i] || node.mesh < 0) continue;
+            const tinygltf::Mesh& mesh = m_model.meshes[std::size_t(node.mesh)];  // checked by readNodes
+            if (node.skin >= 0 && std::size_t(node.skin) >= m_model.skins.size()) throw Error("node " + str(i) + ": skin " + str(node.skin) + " does not exist");
+            for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+                const tinygltf::Primitive& primitive = mesh.primitives[p];
+                const std::string what = "mesh " + str(node.mesh) + " primitive " + str(p);
+                const auto position = primitive.attributes.find("POSITION");
+                if (primitive.mode < TINYGLTF_MODE_TRIANGLES || primitive.mode > TINYGLTF_MODE_TRIANGLE_FAN || position == primitive.attributes.end()) {
+                    ++m_numSkipped;  // points, lines, or no positions: nothing to fill
+                    continue;
+                }
+                const std::size_t numVertices = m_reader.count(position->second, what + " POSITION");
+                const std::size_t numIndices = primitive.indices >= 0 ? m_reader.count(primitive.indices, what + " indices") : numVertices;
+                numTriangles += primitive.mode == TINYGLTF_MODE_TRIANGLES ? numIndices / 3 : (numIndices >= 2 ? numIndices - 2 : 0);
+                std::size_t numSets = 0;
+                while (primitive.attributes.count("JOINTS_" + str(numSets))) ++numSets;
+                const std::size_t factor = numKeys * (1 + primitive.targets.size() + numSets);
+                if (numVertices > m_options.limits.maxVertexWork / factor || vertexWork + numVertices * factor > m_options.limits.maxVertexWork)
+                    throw Error("the scene's vertices times motion keys exceed the limit of " + str(m_options.limits.maxVertexWork));
+                vertexWork += numVertices * factor;
+                if (numTriangles > m_options.limits.maxTriangles)
+                    throw Error("the scene has more than " + str(m_options.limits.maxTriangles) + " triangles");
+                Instance instance;
+                instance.node = std::uint32_t(i);
+                instance.skin = node.skin;
+                instance.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "node " + str(i);
+                instance.data = &primitiveData(node.mesh, int(p));
+                if (node.skin >= 0 && instance.data->geometry.isSkinned()) {
+                    const gltf::Skin& skin = this->skin(node.skin);
+                    if (instance.data->numJointsUsed > skin.joints.size())
+                        throw Error(what + ": joint index " + str(instance.data->numJointsUsed - 1) + " is out of range for skin " + str(node.skin) +
+                                    " (" + str(skin.joints.size()) + " joints)");
+                }
+                m_instances.push_back(std::move(instance));
+            }
+        }
+    }
+
+    const gltf::Skin& skin(int index) {
+        if (auto it = m_skins.find(index); it != m_skins.end()) return it->second;
+        const tinygltf::Skin& src = m_model.skins[std::size_t(index)];
+        const std::string what = "skin " + str(index);
+        gltf::Skin skin;
+        if (src.joints.empty()) throw Error(what + ": has no joints");
+        for (const int joint : src.joints) {
+            if (joint < 0 || std::size_t(joint) >= m_nodes.size()) throw Error(what + ": joint node " + str(joint) + " does not exist");
+            skin.joints.push_back(std::uint32_t(joint));
+        }
+        skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));
+        if (src.inverseBindMatrices >= 0) {
+            const std::vector<float> m = m_reader.readFloats(src.inverseBindMatrices, 16, gltf::kFloat, what + " inverseBindMatrices");
+            if (m.size() < 16 * skin.joints.size()) throw Error(what + ": fewer inverse bind matrices than joints");
+            for (std::size_t j = 0; j < skin.joints.size(); ++j)
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r) skin.inverseBindMatrices[j][c][r] = m[16 * j + std::size_t(c * 4 + r)];
+        }
+        return m_skins[index] = std::move(skin);
+    }
+
+    template <class Vec, int N>
+    std::vector<Vec> readVectors(int accessor, std::uint32_t allowed, std::size_t expectedCount, const std::string& what) {
+        const std::vector<float> values = m_reader.readFloats(accessor, N, allowed, what);
+        if (values.size() != expectedCount * N)
+            throw Error(what + ": has " + str(values.size() / N) + " elements for " + str(expectedCount) + " vertices");
+        std::vector<Vec> out(expectedCount);
+        for (std::size_t i = 0; i < expectedCount; ++i)
+            for (int c = 0; c < N; ++c) out[i][c] = values[i * N + std::size_t(c)];
+        return out;
+    }
+
+    const PrimitiveData& primitiveData(int meshIndex, int primitiveIndex) {
+        const auto key = std::make_pair(meshIndex, primitiveIndex);
+        if (auto it = m_primitives.find(key); it != m_primitives.end()) return it->second;
+        const tinygltf::Primitive& primitive = m_model.meshes[std::size_t(meshIndex)].primitives[std::size_t(primitiveIndex)];
+        const std::string what = "mesh " + str(meshIndex) + " primitive " + str(primitiveIndex);
+        auto attribute = [&](const std::string& name) {
+            const auto it = primitive.attributes.find(name);
+            return it == primitive.attributes.end() ? -1 : it->second;
+        };
+        PrimitiveData data;
+        gltf::PrimitiveGeometry& g = data.geometry;
+        g.positions = readVectors<glm::vec3, 3>(attribute("POSITION"), gltf::kFloat, m_reader.count(attribute("POSITION"), what), what + " POSITION");
+        const std::size_t n = g.positions.size();
+        if (attribute("NORMAL") >= 0) g.normals = readVectors<glm::vec3, 3>(attribute("NORMAL"), gltf::kFloat, n, what + " NORMAL");
+        for (std::size_t t = 0; t < primitive.targets.size(); ++t) {
+            const auto& target = primitive.targets[t];
+            const std::string where = what + " target " + str(t);
+            auto position = target.find("POSITION"), normal = target.find("NORMAL");
+            g.positionTargets.push_back(position == target.end() ? std::vector<glm::vec3>{}
+                                                                 : readVectors<glm::vec3, 3>(position->second, gltf::kFloatOrNormalized, n, where + " POSITION"));
+            g.normalTargets.push_back(normal == target.end() || g.normals.empty()
+                                          ? std::vector<glm::vec3>{}
+                                          : readVectors<glm::vec3, 3>(normal->second, gltf::kFloatOrNormalized, n, where + " NORMAL"));
+        }
+        for (std::size_t set = 0; attribute("JOINTS_" + str(set)) >= 0; ++set) {
+            const std::string joints = "JOINTS_" + str(set), weights = "WEIGHTS_" + str(set);
+            if (attribute(weights) < 0) throw Error(what + ": has " + joints + " but no " + weights);
+            const std::vector<std::uint32_t> j = m_reader.readUints(attribute(joints), 4, gltf::kUnsignedInts, what + " " + joints);
+            if (j.size() != 4 * n) throw Error(what + " " + joints + ": does not have one element per vertex");
+            const std::vector<glm::vec4> w = readVectors<glm::vec4, 4>(attribute(weights), gltf::kFloatOrNormalized, n, what + " " + weights);
+            for (std::size_t v = 0; v < n; ++v) {
+                g.joints.emplace_back(j[4 * v], j[4 * v + 1], j[4 * v + 2], j[4 * v + 3]);
+                for (int c = 0; c < 4; ++c)
+                    if (w[v][c] != 0.0f) data.numJointsUsed = std::max(data.numJointsUsed, j[4 * v + std::size_t(c)] + 1);
+            }
+            g.weights.insert(g.weights.end(), w.begin(), w.end());
+        }
+        if (const int color = attribute("COLOR_0"); color >= 0) {
+            const int numComponents = m_reader.numComponents(color, what + " COLOR_0");
+            const std::uint32_t allowed = gltf::kFloat | gltf::kUnsignedByte | gltf::kUnsignedShort;
+            if (numComponents == 3) {
+                for (const glm::vec3& c : readVectors<glm::vec3, 3>(color, allowed, n, what + " COLOR_0")) data.colors.emplace_back(c, 1.0f);
+            } else {
+                data.colors = readVectors<glm::vec4, 4>(color, allowed, n, what + " COLOR_0");
+            }
+            for (glm::vec4& c : data.colors) c = glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f));  // also maps NaN to 0
+        }
+
+        const MaterialInfo& material = this->material(primitive.material);
+        data.material = material.index;
+        if (material.texCoord >= 0) {
+            const int uvs = attribute("TEXCOORD_" + str(material.texCoord));
+            if (uvs < 0) throw Error(what + ": its material's texture reads TEXCOORD_" + str(material.texCoord) + ", which it does not have");
+            for (const glm::vec2& uv : readVectors<glm::vec2, 2>(uvs, gltf::kFloatOrNormalized, n, what + " TEXCOORD_" + str(material.texCoord)))
+                data.uvs.push_back(glm::vec2(material.uvTransform * glm::vec3(uv, 1.0f)));
+        }
+
+        std::vector<std::uint32_t> indices;
+        if (primitive.indices >= 0) {
+            indices = m_reader.readUints(primitive.indices, 1, gltf::kUnsignedInts, what + " indices");
+            for (const std::uint32_t i : indices)
+                if (i >= n) throw Error(what + ": index " + str(std::size_t(i)) + " is out of range (" + str(n) + " vertices)");
+        } else {
+            indices.resize(n);
+            for (std::size_t i = 0; i < n; ++i) indices[i] = std::uint32_t(i);
+        }
+        data.triangles = triangulate(indices, primitive.mode, what);
+        return m_primitives[key] = std::move(data);
+    }
+
+    static std::vector<glm::uvec3> triangulate(const std::vector<std::uint32_t>& v, int mode, const std::string& what) {
+        std::vector<glm::uvec3> triangles;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (v.size() % 3 != 0) throw Error(what + ": " + str(v.size()) + " triangle indices are not a multiple of 3");
+            for (std::size_t i = 0; i < v.size(); i += 3) triangles.emplace_back(v[i], v[i + 1], v[i + 2]);
+        } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            // glTF 3.7.2.1: triangle i is (v_i, v_i+1+i%2, v_i+2-i%2), keeping the winding.
+            for (std::size_t i = 0; i + 2 < v.size(); ++i) triangles.emplace_back(v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]);
+        } else {
+            // Fan: triangle i is (v_i+1, v_i+2, v_0).
+            for (std::size_t i = 0; i + 2 < v.size(); ++i) triangles.emplace_back(v[i + 1], v[i + 2], v[0]);
+        }
+        return triangles;
+    }
+
+    const MaterialInfo& material(int index) {
+        if (auto it = m_materials.find(index); it != m_materials.end()) return it->second;
+        MaterialInfo info;
+        info.index = std::uint32_t(m_scene.materials.size());
+        Material material;
+        if (index < 0) {
+            material.name = "default";  // glTF's default material: white, opaque, single-sided
+        } else {
+            if (std::size_t(index) >= m_model.materials.size()) throw Error("material " + str(index) + " does not exist");
+            const tinygltf::Material& src = m_model.materials[std::size_t(index)];
+            const std::string what = "material " + str(index);
+            material.name = src.name;
+            const std::vector<double>& factor = src.pbrMetallicRoughness.baseColorFactor;
+            if (factor.size() != 4 || !isFinite(factor)) throw Error(what + ": baseColorFactor is not four finite numbers");
+            material.baseColor = glm::clamp(glm::vec3(float(factor[0]), float(factor[1]), float(factor[2])), 0.0f, 1.0f);
+            if (src.alphaMode.empty() || src.alphaMode == "OPAQUE") material.alphaMode = AlphaMode::Opaque;
+            else if (src.alphaMode == "MASK") material.alphaMode = AlphaMode::Mask;
+            else if (src.alphaMode == "BLEND") material.alphaMode = AlphaMode::Blend;
+            else throw Error(what + ": unknown alphaMode '" + src.alphaMode + "'");
+            // glTF: an opaque material ignores every alpha, its base colour's included.
+            if (material.alphaMode != AlphaMode::Opaque) material.opacity = std::clamp(float(factor[3]), 0.0f, 1.0f);
+            if (!std::isfinite(src.alphaCutoff)) throw Error(what + ": alphaCutoff is not finite");
+            material.alphaCutoff = std::clamp(float(src.alphaCutoff), 0.0f, 1.0f);
+            material.doubleSided = src.doubleSided;
+            const tinygltf::TextureInfo& texture = src.pbrMetallicRoughness.baseColorTexture;
+            if (texture.index >= 0) {
+                if (texture.texCoord < 0) throw Error(what + ": baseColorTexture texCoord is negative");
+                info.texCoord = texture.texCoord;
+                info.uvTransform = textureTransform(texture.extensions, info.texCoord, what + " baseColorTexture");
+                material.baseColorTexture = int(this->texture(texture.index, what + " baseColorTexture"));
+            }
+        }
+        m_scene.materials.push_back(material);
+        return m_materials[index] = info;
+    }
+
+    // A streak texture per (image, wrap modes); the minification and magnification filters are
+    // not honoured: streak always filters trilinearly from the pixel (or path) footprint.
+    std::uint32_t texture(int index, const std::string& what) {
+        if (std::size_t(index) >= m_model.textures.size()) throw Error(what + ": texture " + str(index) + " does not exist");
+        const tinygltf::Texture& src = m_model.textures[std::size_t(index)];
+        const std::string where = what + " (texture " + str(index) + ")";
+        if (src.source < 0) throw Error(where + ": has no PNG or JPEG image");
+        WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
+        if (src.sampler >= 0) {
+            if (std::size_t(src.sampler) >= m_model.samplers.size()) throw Error(where + ": sampler " + str(src.sampler) + " does not exist");
+            const tinygltf::Sampler& sampler = m_model.samplers[std::size_t(src.sampler)];
+            wrapS = wrapMode(sampler.wrapS, where + " wrapS");
+            wrapT = wrapMode(sampler.wrapT, where + " wrapT");
+        }
+        const auto key = std::make_tuple(src.source, wrapS, wrapT);
+        if (auto it = m_textures.find(key); it != m_textures.end()) return it->second;
+        const gltf::DecodedImage image = gltf::decodeImage(m_document, src.source, m_documentLimits);
+        m_scene.textures.push_back(Texture::fromSrgb8(image.width, image.height, image.rgba, wrapS, wrapT));
+        return m_textures[key] = std::uint32_t(m_scene.textures.size() - 1);
+    }
+
+    // The key poses: every node posed at each key time, every instance deformed into its mesh.
+    // Where an instance's inputs (world matrix, morph weights, joint matrices) equal those of the
+    // key before, its vertices are copied rather than computed again.
+    void sampleKeys() {
+        const int numKeys = int(m_keyTimes.size());
+        for (const Instance& instance : m_instances) {
+            const PrimitiveData& data = *instance.data;
+            const std::size_t n = data.geometry.numVertices();
+            Mesh mesh;
+            mesh.name = instance.name;
+            mesh.numKeys = numKeys;
+            mesh.interpolation = MotionInterpolation::PiecewiseLinear;
+            mesh.positions.resize(n * std::size_t(numKeys));
+            if (!data.geometry.normals.empty()) mesh.normals.resize(n * std::size_t(numKeys));
+            mesh.uvs = data.uvs;
+            mesh.colors = data.colors;
+            mesh.triangles = data.triangles;
+            mesh.material = data.material;
+            m_scene.meshes.push_back(std::move(mesh));
+        }
+        gltf::NodePoses previous;
+        std::map<int, std::vector<glm::mat4>> previousJoints;
+        const int middleKey = (numKeys - 1) / 2;
+        for (int k = 0; k < numKeys; ++k) {
+            gltf::NodePoses poses = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, m_keyTimes[std::size_t(k)]);
+            std::map<int, std::vector<glm::mat4>> joints;
+            for (const Instance& instance : m_instances)
+                if (instance.skin >= 0 && instance.data->geometry.isSkinned() && !joints.count(instance.skin)) joints[instance.skin] = gltf::jointMatrices(skin(instance.skin), poses);
+            if (k == 0) m_openPoses = poses;
+            if (k == numKeys - 1) m_closePoses = poses;
+            for (std::size_t i = 0; i < m_instances.size(); ++i) {
+                const Instance& instance = m_instances[i];
+                Mesh& mesh = m_scene.meshes[i];
+                const std::size_t n = instance.data->geometry.numVertices(), node = instance.node;
+                const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
+                const std::span<const glm::mat4> jointMatrices =
+                    isSkinned ? std::span<const glm::mat4>(joints[instance.skin]) : std::span<const glm::mat4>();
+                const std::span<glm::vec3> positions(mesh.positions.data() + std::size_t(k) * n, n);
+                const std::span<glm::vec3> normals = mesh.hasNormals() ? std::span<glm::vec3>(mesh.normals.data() + std::size_t(k) * n, n)
+                                                                       : std::span<glm::vec3>();
+                const bool isUnchanged = k > 0 && poses.worldFromNode[node] == previous.worldFromNode[node] &&
+                                         poses.weights[node] == previous.weights[node] &&
+                                         (!isSkinned || joints[instance.skin] == previousJoints[instance.skin]);
+                if (isUnchanged) {
+                    std::copy_n(positions.data() - n, n, positions.data());
+                    if (!normals.empty()) std::copy_n(normals.data() - n, n, normals.data());
+                } else {
+                    gltf::deformPrimitive(instance.data->geometry, poses.weights[node], poses.worldFromNode[node], jointMatrices, positions, normals);
+                }
+                // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding
+                // clockwise; flip it back so that front faces stay counter-clockwise.
+                if (k == middleKey && !isSkinned && glm::determinant(glm::mat3(poses.worldFromNode[node])) < 0.0f)
+                    for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
+            }
+            previous = std::move(poses);
+            previousJoints = std::move(joints);
+        }
+    }
+
+    // World-space bounds of every key pose, to frame the scene or scale the near plane.
+    void sceneBounds(glm::vec3& lo, glm::vec3& hi) const {
+        lo = glm::vec3(std::numeric_limits<float>::max());
+        hi = glm::vec3(-std::numeric_limits<float>::max());
+        for (const Mesh& mesh : m_scene.meshes)
+            for (const glm::vec3& p : mesh.positions)
+                if (isFinite(p)) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);
+    }
+
+    void placeCamera() {
+        Camera& camera = m_scene.camera;
+        glm::vec3 lo, hi;
+        sceneBounds(lo, hi);
+        const glm::vec3 centre = 0.5f * (lo + hi), half = 0.5f * (hi - lo);
+        const float diagonal = 2.0f * glm::length(half);
+
+        if (m_options.lookAt) {
+            const GltfLookAt& look = *m_options.lookAt;
+            const glm::vec3 positionEnd = look.positionEnd.value_or(look.position), targetEnd = look.targetEnd.value_or(look.target);
+            for (const auto& [from, to] : {std::pair{look.position, look.target}, std::pair{positionEnd, targetEnd}}) {
+                if (!isFinite(from) || !isFinite(to) || !isFinite(look.up)) throw Error("camera position, target and up must be finite");
+                const glm::vec3 forward = to - from;
+                if (!(glm::length(forward) > 0.0f)) throw Error("camera position and target must differ");
+                if (!(glm::length(glm::cross(forward, look.up)) > 1e-6f * glm::length(forward) * glm::length(look.up)))
+                    throw Error("camera up must not be parallel to the view direction");
+            }
+            if (!(look.verticalFovDegrees > 0.0f && look.verticalFovDegrees < 180.0f)) throw Error("--fov must be in (0, 180) degrees");
+            camera.open = CameraPose::lookAt(look.position, look.target, look.up);
+            camera.close = CameraPose::lookAt(positionEnd, targetEnd, look.up);
+            camera.verticalFov = glm::radians(look.verticalFovDegrees);
+            const float distance = std::max(glm::length(look.position - centre), glm::length(positionEnd - centre));
+            camera.zNear = std::max(1e-4f * (diagonal + distance), 1e-8f);
+            return;
+        }
+
+        int cameraNode = -1;
+        if (m_options.camera) {
+            const int index = *m_options.camera;
+            if (index < 0 || std::size_t(index) >= m_model.cameras.size())
+                throw Error("camera " + str(index) + " does not exist (the file has " + str(m_model.cameras.size()) + ")");
+            if (m_model.cameras[std::size_t(index)].type != "perspective")
+                throw Error("camera " + str(index) + " is not a perspective camera");
+            for (std::size_t i = 0; i < m_nodes.size() && cameraNode < 0; ++i)
+                if (m_isInScene[i] && m_model.nodes[i].camera == index) cameraNode = int(i);
+            if (cameraNode < 0) throw Error("camera " + str(index) + " is not placed by any node of the scene");
+        } else {
+            for (std::size_t i = 0; i < m_nodes.size() && cameraNode < 0; ++i) {
+                const int c = m_model.nodes[i].camera;
+                if (m_isInScene[i] && c >= 0 && std::size_t(c) < m_model.cameras.size() && m_model.cameras[std::size_t(c)].type == "perspective")
+                    cameraNode = int(i);
+            }
+        }
+        if (cameraNode >= 0) {
+            const int index = m_model.nodes[std::size_t(cameraNode)].camera;
+            const std::string what = "camera " + str(index);
+            const tinygltf::PerspectiveCamera& perspective = m_model.cameras[std::size_t(index)].perspective;
+            if (!(perspective.yfov > 0.0 && perspective.yfov < std::numbers::pi)) throw Error(what + ": yfov is not in (0, pi)");
+            if (!(perspective.znear > 0.0) || !std::isfinite(perspective.znear)) throw Error(what + ": znear is not positive");
+            camera.open = poseFromMatrix(m_openPoses.worldFromNode[std::size_t(cameraNode)], what);
+            camera.close = poseFromMatrix(m_closePoses.worldFromNode[std::size_t(cameraNode)], what);
+            camera.verticalFov = float(perspective.yfov);
+            camera.zNear = float(perspective.znear);
+            return;
+        }
+
+        // No camera: look down -z at the bounds from far enough on +z to see all of them.
+        camera.verticalFov = glm::radians(45.0f);
+        const float tanHalf = std::tan(0.5f * camera.verticalFov);
+        const float reach = std::max(half.y, half.x / m_options.aspect) / tanHalf;
+        const float distance = half.z + std::max(1.1f * reach, 1e-6f);
+        camera.open = camera.close = CameraPose::lookAt(centre + glm::vec3(0.0f, 0.0f, distance), centre);
+        camera.zNear = std::max(0.01f * (distance - half.z), 1e-9f);
+    }
+
+    const gltf::Document& m_document;
+    const tinygltf::Model& m_model;
+    const GltfOptions& m_options;
+    RenderStats* m_stats;
+    AccessorReader m_reader;
+    gltf::DocumentLimits m_documentLimits;
+    Scene m_scene;
+    std::vector<float> m_keyTimes;                                   ///< seconds of animation time
+    std::vector<gltf::Node> m_nodes;
+    std::vector<bool> m_isInScene;                                   ///< per node: reachable from the scene's roots
+    std::optional<gltf::Animation> m_animation;
+    std::map<int, gltf::Skin> m_skins;                               ///< by glTF skin index
+    std::map<std::pair<int, int>, PrimitiveData> m_primitives;       ///< by (mesh, primitive)
+    std::map<int, MaterialInfo> m_materials;                         ///< by glTF material index (-1: default)
+    std::map<std::tuple<int, WrapMode, WrapMode>, std::uint32_t> m_textures;  ///< by (image, wraps)
+    std::vector<Instance> m_instances;
+    gltf::NodePoses m_openPoses, m_closePoses;
+    std::size_t m_numSkipped = 0;                                    ///< primitives that are not triangles
+};
+
+}  // namespace
+
+Scene loadGltfFromMemory(std::span<const std::uint8_t> bytes, const std::string& name, const std::string& baseDir,
+                         const GltfOptions& options, RenderStats* stats) {
+    try {
+        const gltf::DocumentLimits limits{options.allowExternalFiles, options.limits.maxFileBytes, options.limits.maxTexels};
+        const gltf::Document document = gltf::parseDocument(bytes, baseDir, limits);
+        Scene scene = SceneBuilder(document, options, stats).build();
+        scene.name = std::filesystem::path(name).stem().string();
+        return scene;
+    } catch (const Error& e) {
+        throw Error(name + ": " + e.what());
+    } catch (const std::bad_alloc&) {
+        throw Error(name + ": out of memory");
+    } catch (const std::length_error&) {
+        throw Error(name + ": out of memory");
+    }
+}
+
+Scene loadGltf(const std::string& path, const GltfOptions& options, RenderStats* stats) {
+    const std::vector<std::uint8_t> bytes = gltf::readFileBytes(path, options.limits.maxFileBytes);
+    return loadGltfFromMemory(bytes, path, std::filesystem::path(path).parent_path().string(), options, stats);
+}
+
+}  // namespace streak

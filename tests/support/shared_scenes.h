@@ -1,0 +1,23 @@
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace streak::test {
+
+// The third-party glTF sample models in ../shared/scenes (relative to the repository root):
+// STREAK_SHARED_SCENES_DIR is its absolute path, set by CMake. They are not part of the
+// repository, so tests that need them skip (with this message) where the folder is absent.
+inline std::string sharedScene(const std::string& relative) { return std::string(STREAK_SHARED_SCENES_DIR) + "/" + relative; }
+
+inline bool hasSharedScenes() { return std::filesystem::is_directory(STREAK_SHARED_SCENES_DIR); }
+
+#define STREAK_REQUIRE_SHARED_SCENES()                                                                               \
+    do {                                                                                                            \
+        if (!::streak::test::hasSharedScenes())                                                                     \
+            GTEST_SKIP() << "the glTF sample models are not at " STREAK_SHARED_SCENES_DIR " (../shared/scenes)"; \
+    } while (0)
+
+}  // namespace streak::test
