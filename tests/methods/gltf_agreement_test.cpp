@@ -6,8 +6,8 @@
 // which proves that the motion is there to agree on.
 
 #include "image/metrics.h"
-#include "methods/registry.h"
 #include "scene/scene_loader.h"
+#include "support/render.h"
 #include "support/shared_scenes.h"
 
 #include <gtest/gtest.h>
@@ -73,16 +73,7 @@ const ModelCase kModels[] = {
 };
 
 Image render(const std::string& method, const Scene& scene, int samples = 0) {
-    OptionMap options;
-    if (samples > 0) options.set("samples", std::to_string(samples));
-    std::unique_ptr<Renderer> renderer = createRenderer(method, options);
-    RenderSettings settings;
-    settings.width = kWidth;
-    settings.height = kHeight;
-    settings.shading = ShadingMode::Unlit;
-    RenderStats stats;
-    RenderContext context{stats};
-    return renderer->render(scene, settings, context);
+    return test::render(method, scene, kWidth, kHeight, samples > 0 ? test::withOption("samples", std::to_string(samples)) : OptionMap());
 }
 
 class GltfAgreement : public ::testing::TestWithParam<ModelCase> {};
