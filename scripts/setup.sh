@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libtinygltf-dev libembree-dev nlohmann-json3-dev
+  clang libclang-rt-14-dev
   python3-matplotlib
 )
 

@@ -79,6 +79,36 @@ bool startsWith(std::span<const std::uint8_t> bytes, std::span<const std::uint8_
     return bytes.size() >= magic.size() && std::equal(magic.begin(), magic.end(), bytes.begin());
 }
 
+// tinygltf copies "extras" and "extensions" values recursively, so a deeply nested file would
+// overflow the stack. glTF itself needs a handful of levels.
+constexpr int kMaxJsonDepth = 128;
+
+void checkJsonDepth(std::span<const std::uint8_t> json) {
+    int depth = 0;
+    bool isInString = false, isEscaped = false;
+    for (const std::uint8_t c : json) {
+        if (isInString) {
+            if (isEscaped) isEscaped = false;
+            else if (c == '\\') isEscaped = true;
+            else if (c == '"') isInString = false;
+        } else if (c == '"') {
+            isInString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) throw Error("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+// The JSON of a .glb: its first chunk, as far as the bytes go (tinygltf checks the rest).
+std::span<const std::uint8_t> glbJsonChunk(std::span<const std::uint8_t> bytes) {
+    if (bytes.size() < 20) return {};
+    const std::uint32_t length = std::uint32_t(bytes[12]) | std::uint32_t(bytes[13]) << 8 | std::uint32_t(bytes[14]) << 16 |
+                                 std::uint32_t(bytes[15]) << 24;
+    return bytes.subspan(20, std::min<std::size_t>(length, bytes.size() - 20));
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t maxBytes) {
@@ -105,8 +135,10 @@ Document parseDocument(std::span<const std::uint8_t> bytes, const std::string& b
     std::string err, warn;
     bool ok = false;
     constexpr std::array<std::uint8_t, 4> kGlbMagic{'g', 'l', 'T', 'F'};
+    const bool isGlb = startsWith(bytes, kGlbMagic);
+    checkJsonDepth(isGlb ? glbJsonChunk(bytes) : bytes);
     try {
-        if (startsWith(bytes, kGlbMagic))
+        if (isGlb)
             ok = parser.LoadBinaryFromMemory(&document.model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir);
         else
             ok = parser.LoadASCIIFromString(&document.model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),

@@ -452,8 +452,10 @@ private:
         if (material.texCoord >= 0) {
             const int uvs = attribute("TEXCOORD_" + str(material.texCoord));
             if (uvs < 0) throw Error(what + ": its material's texture reads TEXCOORD_" + str(material.texCoord) + ", which it does not have");
-            for (const glm::vec2& uv : readVectors<glm::vec2, 2>(uvs, gltf::kFloatOrNormalized, n, what + " TEXCOORD_" + str(material.texCoord)))
-                data.uvs.push_back(glm::vec2(material.uvTransform * glm::vec3(uv, 1.0f)));
+            for (const glm::vec2& uv : readVectors<glm::vec2, 2>(uvs, gltf::kFloatOrNormalized, n, what + " TEXCOORD_" + str(material.texCoord))) {
+                const glm::vec2 transformed(material.uvTransform * glm::vec3(uv, 1.0f));
+                data.uvs.push_back(std::isfinite(transformed.x) && std::isfinite(transformed.y) ? transformed : glm::vec2(0.0f));
+            }
         }
 
         std::vector<std::uint32_t> indices;

@@ -3,7 +3,7 @@
 
 #include "scene/gltf_document.h"
 #include "scene/gltf_loader.h"
-#include "support/gltf_builder.h"
+#include "support/gltf_samples.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
 #include "util/error.h"
@@ -42,42 +42,15 @@ std::string errorOf(const std::vector<std::uint8_t>& bytes, const GltfOptions& o
 }
 
 // A valid indexed, textured, skinned, animated triangle that each case then breaks.
-test::GltfBuilder validFile() {
-    test::GltfBuilder b;
-    json primitive;
-    primitive["attributes"]["POSITION"] = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
-    primitive["attributes"]["TEXCOORD_0"] = b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2", 2);
-    primitive["attributes"]["JOINTS_0"] = b.addAccessor(std::vector<std::uint8_t>(12, 0), "VEC4", 4, 5121);
-    primitive["attributes"]["WEIGHTS_0"] = b.addFloats({1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 4);
-    primitive["indices"] = b.addIndices({0, 1, 2});
-    primitive["material"] = 0;
-    b.addMeshNode(primitive, {{"skin", 0}});
-    b.json()["nodes"].push_back(json::object());  // node 1: the joint
-    b.addToScene(1);
-    b.json()["skins"] = {{{"joints", {1}}}};
-    b.json()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
-    b.json()["textures"] = {{{"source", 0}}};
-    // A 1x1 PNG (white, opaque).
-    const std::vector<std::uint8_t> png{0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52,
-                                        0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4,
-                                        0x89, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xff, 0xff, 0xff,
-                                        0x3f, 0x00, 0x05, 0xfe, 0x02, 0xfe, 0xa7, 0x35, 0x81, 0x84, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45,
-                                        0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
-    b.json()["images"] = {{{"uri", "data:image/png;base64," + test::GltfBuilder::base64(png)}}};
-    const int times = b.addFloats({0, 1}, "SCALAR", 1);
-    const int values = b.addFloats({0, 0, 0, 1, 0, 0}, "VEC3", 3);
-    json animation;
-    animation["samplers"] = json::array({{{"input", times}, {"output", values}}});
-    animation["channels"] = json::array({{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}});
-    b.json()["animations"] = json::array({animation});
-    return b;
-}
+test::GltfBuilder validFile() { return test::skinnedTexturedTriangle(); }
 
 }  // namespace
 
-TEST(GltfBadInput, TheValidFileLoads) {
+TEST(GltfBadInput, TheValidFilesLoad) {
     EXPECT_EQ(errorOf(validFile().gltfBytes()), "");
     EXPECT_EQ(errorOf(validFile().glb()), "");
+    EXPECT_EQ(errorOf(test::morphingStripWithCamera().gltfBytes()), "");
+    EXPECT_EQ(errorOf(test::morphingStripWithCamera().glb()), "");
 }
 
 TEST(GltfBadInput, EachBreakageIsOneLineErrorNamingFileAndProblem) {
@@ -184,6 +157,22 @@ TEST(GltfBadInput, MalformedAndTruncatedFilesAreErrors) {
         lying[at] = 0xff, lying[at + 1] = 0xff, lying[at + 2] = 0xff, lying[at + 3] = 0x7f;
         EXPECT_NE(errorOf(lying), "") << at;
     }
+}
+
+TEST(GltfBadInput, DeeplyNestedJsonIsRefusedBeforeParsing) {
+    // tinygltf would recurse once per level of "extras"; 100000 levels would overflow the stack.
+    test::GltfBuilder b = validFile();
+    std::string text = b.gltf();
+    text.insert(text.size() - 1, ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']'));
+    const std::string message = errorOf({text.begin(), text.end()});
+    EXPECT_NE(message.find("nested deeper than"), std::string::npos) << message;
+    // Brackets inside strings and in a .glb's binary chunk are not nesting.
+    test::GltfBuilder brackets = validFile();
+    brackets.json()["asset"]["generator"] = std::string(500, '[');
+    const std::vector<std::uint8_t> binary(500, '[');
+    brackets.addView(binary.data(), binary.size());
+    EXPECT_EQ(errorOf(brackets.gltfBytes()), "");
+    EXPECT_EQ(errorOf(brackets.glb()), "");
 }
 
 TEST(GltfBadInput, FilesOnDiskMissingBuffersAndExternalFiles) {

@@ -84,7 +84,7 @@ public:
             for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
         };
         const std::uint32_t length = std::uint32_t(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size()));
-        out.insert(out.end(), {'g', 'l', 'T', 'F'});
+        for (const char c : {'g', 'l', 'T', 'F'}) out.push_back(std::uint8_t(c));
         u32(2);
         u32(length);
         u32(std::uint32_t(text.size()));
