@@ -157,6 +157,7 @@ private:
     void readNodes() {
         const std::size_t n = m_model.nodes.size();
         m_nodes.resize(n);
+        std::size_t numWeights = 0;  // over all nodes: each key pose copies them
         for (std::size_t i = 0; i < n; ++i) {
             const tinygltf::Node& src = m_model.nodes[i];
             const std::string what = "node " + str(i);
@@ -191,6 +192,9 @@ private:
             }
             if (src.mesh >= 0) {
                 const int numTargets = this->numTargets(src.mesh);
+                numWeights += std::size_t(numTargets);
+                if (numWeights > m_options.limits.maxVertexWork / m_keyTimes.size())
+                    throw Error("the nodes' morph weights times motion keys exceed the limit of " + str(m_options.limits.maxVertexWork));
                 const std::vector<double>& weights = !src.weights.empty() ? src.weights : m_model.meshes[std::size_t(src.mesh)].weights;
                 if (!weights.empty() && weights.size() != std::size_t(numTargets))
                     throw Error(what + ": has " + str(weights.size()) + " morph weights for " + str(numTargets) + " targets");

@@ -111,6 +111,13 @@ TEST(GltfBadInput, EachBreakageIsOneLineErrorNamingFileAndProblem) {
         {"weights of a node without targets", [](B&, json& j) { j["animations"][0]["channels"][0]["target"]["path"] = "weights"; },
          "no morph targets"},
         {"missing scene", [](B&, json& j) { j["scene"] = 4; }, ""},
+        {"too many morph weights (instancing)",
+         [](B&, json& j) {
+             j["meshes"][0]["primitives"][0]["targets"] = json::array();
+             for (int t = 0; t < 2000; ++t) j["meshes"][0]["primitives"][0]["targets"].push_back({{"POSITION", 0}});
+             for (int i = 0; i < 30; ++i) j["nodes"].push_back({{"mesh", 0}});
+         },
+         "morph weights times motion keys exceed the limit"},
         {"too many triangles (instancing)",
          [](B&, json& j) {
              for (int i = 0; i < 1200; ++i) j["nodes"].push_back({{"mesh", 0}}), j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
