@@ -23,9 +23,10 @@ float turnBetween(glm::vec3 a, glm::vec3 b) {
 // The quadratic through (0, a), (1/2, m), (1, b), as coefficients: value(f) = c0 + f (c1 + f c2).
 template <class T>
 struct QuadraticThrough {
+    QuadraticThrough() = default;
     QuadraticThrough(const T& a, const T& m, const T& b) : c0(a), c1(-3.0f * a + 4.0f * m - b), c2(2.0f * a - 4.0f * m + 2.0f * b) {}
     T operator()(float f) const { return c0 + f * (c1 + f * c2); }
-    T c0, c1, c2;
+    T c0{}, c1{}, c2{};
 };
 
 // Lighting over a span: Simpson's three points (ends and middle), or n midpoint taps.
@@ -39,8 +40,8 @@ public:
         if (numTaps <= 3) {
             const float tm = 0.5f * (t0 + t1);
             const std::array<PhongTerms, 3> s{light(ends[0], t0), light(ends[1], tm), light(ends[2], t1)};
-            m_diffuse.emplace(s[0].diffuse, s[1].diffuse, s[2].diffuse);
-            m_specular.emplace(s[0].specular, s[1].specular, s[2].specular);
+            m_diffuse = {s[0].diffuse, s[1].diffuse, s[2].diffuse};
+            m_specular = {s[0].specular, s[1].specular, s[2].specular};
             m_mean.diffuse = (s[0].diffuse + 4.0f * s[1].diffuse + s[2].diffuse) / 6.0f;
             m_mean.specular = (s[0].specular + 4.0f * s[1].specular + s[2].specular) / 6.0f;
             return;
@@ -61,7 +62,7 @@ public:
 
     // The terms at fraction f of the span: the Simpson quadratic, or linear between taps.
     PhongTerms at(float f) const {
-        if (m_taps.empty()) return {(*m_diffuse)(f), (*m_specular)(f)};
+        if (m_taps.empty()) return {m_diffuse(f), m_specular(f)};
         const float x = std::clamp(f * float(m_taps.size()) - 0.5f, 0.0f, float(m_taps.size() - 1));
         const std::size_t i = std::min(std::size_t(x), m_taps.size() - 1), j = std::min(i + 1, m_taps.size() - 1);
         const float w = x - float(i);
@@ -69,7 +70,7 @@ public:
     }
 
 private:
-    std::optional<QuadraticThrough<glm::vec3>> m_diffuse, m_specular;  ///< Simpson's case
+    QuadraticThrough<glm::vec3> m_diffuse{}, m_specular{};  ///< Simpson's case (no taps)
     std::vector<PhongTerms> m_taps;
     PhongTerms m_mean;
 };
