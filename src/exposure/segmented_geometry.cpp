@@ -2,10 +2,12 @@
 
 #include "raster/moving_triangle.h"
 
+#include <glm/common.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <limits>
 
 namespace streak::exposure {
@@ -60,6 +62,30 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
 
 const TriangleSegment& SegmentedGeometry::segmentAt(std::uint32_t triangle, float t) const {
     return segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1));
+}
+
+std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {
+    std::vector<raster::PixelBounds> bounds(m_segments.size());
+    tbb::parallel_for(std::size_t(0), m_segments.size(), [&](std::size_t i) {
+        const TriangleSegment& s = m_segments[i];
+        raster::PixelBounds& b = bounds[i];
+        if (s.isBackFacingThroughout) return;  // empty
+        if (!s.isInFront()) {
+            b = {0, 0, viewport.width - 1, viewport.height - 1};
+            return;
+        }
+        glm::dvec2 lo(1e300), hi(-1e300);
+        for (const auto* corners : {&s.clip0, &s.clip1})
+            for (const glm::vec4& c : *corners) {
+                const glm::dvec2 p((double(c.x) / c.w + 1.0) * 0.5 * viewport.width, (1.0 - double(c.y) / c.w) * 0.5 * viewport.height);
+                lo = glm::min(lo, p), hi = glm::max(hi, p);
+            }
+        b.x0 = int(std::clamp(std::floor(lo.x), 0.0, double(viewport.width)));
+        b.y0 = int(std::clamp(std::floor(lo.y), 0.0, double(viewport.height)));
+        b.x1 = int(std::clamp(std::floor(hi.x), -1.0, double(viewport.width - 1)));
+        b.y1 = int(std::clamp(std::floor(hi.y), -1.0, double(viewport.height - 1)));
+    });
+    return bounds;
 }
 
 }  // namespace streak::exposure

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "raster/screen_triangle.h"
 #include "scene/flat_geometry.h"
 #include "scene/scene.h"
 
@@ -49,6 +50,12 @@ public:
     // The segment of a triangle holding shutter time t.
     const TriangleSegment& segmentAt(std::uint32_t triangle, float t) const;
     std::int64_t numBackFacing() const { return m_numBackFacing; }
+
+    // The pixels each segment may cover over its time, for binning: with all corners in front of
+    // the eye each corner's screen path is a straight segment between its ends, so the box of
+    // the six projected corners holds the triangle at every time; a segment reaching behind the
+    // eye may cover anything; one that faces away throughout covers nothing.
+    std::vector<raster::PixelBounds> screenBounds(const raster::Viewport& viewport) const;
 
 private:
     FlatGeometry m_flat;

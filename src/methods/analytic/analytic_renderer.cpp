@@ -162,36 +162,7 @@ private:
         SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
 
-        // Traversal covers only the screen box of a segment over its time: with all corners in
-        // front of the eye, each corner's screen path is a straight segment between its ends, so
-        // the box of the six projected corners holds the triangle at every time. A segment
-        // reaching behind the eye may cover anything.
-        void computeBounds() {
-            const auto segments = segmented->segments();
-            bounds.resize(segments.size());
-            tbb::parallel_for(std::size_t(0), segments.size(), [&](std::size_t i) {
-                const exposure::TriangleSegment& s = segments[i];
-                raster::PixelBounds& b = bounds[i];
-                if (s.isBackFacingThroughout) {
-                    b = {};
-                    return;
-                }
-                if (!s.isInFront()) {
-                    b = {0, 0, viewport.width - 1, viewport.height - 1};
-                    return;
-                }
-                glm::dvec2 lo(1e300), hi(-1e300);
-                for (const auto* corners : {&s.clip0, &s.clip1})
-                    for (const glm::vec4& c : *corners) {
-                        const glm::dvec2 raster((double(c.x) / c.w + 1.0) * 0.5 * viewport.width, (1.0 - double(c.y) / c.w) * 0.5 * viewport.height);
-                        lo = glm::min(lo, raster), hi = glm::max(hi, raster);
-                    }
-                b.x0 = int(std::clamp(std::floor(lo.x), 0.0, double(viewport.width)));
-                b.y0 = int(std::clamp(std::floor(lo.y), 0.0, double(viewport.height)));
-                b.x1 = int(std::clamp(std::floor(hi.x), -1.0, double(viewport.width - 1)));
-                b.y1 = int(std::clamp(std::floor(hi.y), -1.0, double(viewport.height - 1)));
-            });
-        }
+        void computeBounds() { bounds = segmented->screenBounds(viewport); }
     };
 
     // True when the segment keeps one orientation and stays outside one of its edges over the

@@ -52,7 +52,7 @@ struct Fragment {
 // Counters of one thread, summed at the end.
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
-                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, shadedIntervals = 0;
+                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, shadedIntervals = 0, pathFaces = 0;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
 
@@ -73,6 +73,8 @@ struct TileScratch {
     std::vector<float> events;
     std::vector<glm::vec3> color;
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
+    MotionPath path;
+    raster::TriangleSetup setup;
     Counters counters;
 };
 
@@ -93,7 +95,7 @@ public:
         raster::TileGrid grid(frame.viewport, kTileSize);
         {
             PhaseTimer timer(context.stats, "bin");
-            grid.bin(frame.faces.size(), [&](std::size_t i) { return frame.faces[i].screen.bounds; });
+            grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
         }
         std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
         tbb::enumerable_thread_specific<TileScratch> scratch;
@@ -111,7 +113,7 @@ public:
             total.fragments += c.fragments, total.fragmentOverflowSamples += c.fragmentOverflowSamples;
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
-            total.culledIntervals += c.culledIntervals, total.shadedIntervals += c.shadedIntervals;
+            total.culledIntervals += c.culledIntervals, total.shadedIntervals += c.shadedIntervals, total.pathFaces += c.pathFaces;
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
             total.shadeSeconds += c.shadeSeconds;
@@ -130,7 +132,7 @@ public:
         RenderStats& stats = context.stats;
         stats.setCounter("segments_per_triangle", frame.numSegments);
         stats.setCounter("motion_paths", double(frame.paths.size()));
-        stats.setCounter("path_faces", double(frame.faces.size()));
+        stats.setCounter("path_faces_rasterized", double(total.pathFaces));
         stats.setCounter("backfacing_paths_skipped", double(frame.segmented.numBackFacing()));
         stats.setCounter("fragments", double(total.fragments));
         stats.setCounter("fragments_per_sample_mean", double(total.fragments) / numSamples);
@@ -169,26 +171,9 @@ private:
             spanShading.tapsPerTexel = options.tapsPerTexel;
         }
 
-        void generate() {
-            constexpr std::size_t kChunk = 1024;
-            const std::size_t numChunks = (paths.size() + kChunk - 1) / kChunk;
-            std::vector<std::vector<raster::RasterTriangle>> chunkFaces(numChunks);
-            tbb::parallel_for(std::size_t(0), numChunks, [&](std::size_t c) {
-                MotionPath path;
-                raster::TriangleSetup setup;
-                for (std::size_t p = c * kChunk; p < std::min(paths.size(), (c + 1) * kChunk); ++p) {
-                    // A single-sided triangle that shows its back all through the segment is never
-                    // seen: it gets no path.
-                    if (paths[p].isBackFacingThroughout) continue;
-                    motion_path::buildMotionPath(paths[p].clip0, paths[p].clip1, path);
-                    for (int f = 0; f < path.count; ++f) {
-                        raster::setupTriangle(path.faces[f].clip, std::uint32_t(p), scene.camera.zNear, viewport, raster::CullMode::None, setup);
-                        chunkFaces[c].insert(chunkFaces[c].end(), setup.triangles.begin(), setup.triangles.begin() + setup.count);
-                    }
-                }
-            });
-            for (const auto& chunk : chunkFaces) faces.insert(faces.end(), chunk.begin(), chunk.end());
-        }
+        // Paths are binned by their screen boxes and built into faces tile by tile, so memory
+        // stays one box per path however many triangles the scene has.
+        void generate() { bounds = segmented.screenBounds(viewport); }
 
         // The exact time spans in which the sample lies inside the path's triangle, appended to
         // `events` as start/end shutter times.
@@ -217,7 +202,7 @@ private:
         int numSegments;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         SpanShadingSettings spanShading;
-        std::vector<raster::RasterTriangle> faces;         ///< source = index into paths
+        std::vector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
     };
 
     // Builds the intervals of one sample from its fragments (sorted by path), appending them to
@@ -275,17 +260,24 @@ private:
         const Options& options = frame.options;
         Counters& counters = scratch.counters;
 
-        // Rasterize: every path face adds a fragment to each sample it covers.
+        // Rasterize: every face of every path reaching the tile adds a fragment to each sample
+        // it covers.
         auto start = Clock::now();
         scratch.movingTriangles.clear();
         scratch.fragments.clear();
         for (const std::uint32_t index : grid.items(tile)) {
-            const raster::RasterTriangle& rt = frame.faces[index];
-            const float nearness = frame.paths[rt.source].nearness;
-            raster::scanTriangle(rt.screen, rect, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
-                const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                scratch.fragments.push_back({sample, rt.source, nearness});
-            });
+            const exposure::TriangleSegment& segment = frame.paths[index];
+            motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
+            counters.pathFaces += scratch.path.count;
+            for (int f = 0; f < scratch.path.count; ++f) {
+                raster::setupTriangle(scratch.path.faces[f].clip, index, frame.scene.camera.zNear, frame.viewport, raster::CullMode::None,
+                                      scratch.setup);
+                for (int k = 0; k < scratch.setup.count; ++k)
+                    raster::scanTriangle(scratch.setup.triangles[k].screen, rect, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
+                        const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                        scratch.fragments.push_back({sample, index, segment.nearness});
+                    });
+            }
         }
         counters.fragments += std::int64_t(scratch.fragments.size());
         raster::groupBySample(std::span<const Fragment>(scratch.fragments), numSamples, scratch.fragmentRuns, scratch.bySample);
