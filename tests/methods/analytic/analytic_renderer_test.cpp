@@ -47,6 +47,16 @@ TEST(AnalyticRenderer, AgreesWithTheReferenceOnEveryBuiltinScene) {
     }
 }
 
+TEST(AnalyticRenderer, MultiKeyMotionIsCutIntoLinearSegments) {
+    // K = 5 piecewise-linear keys: four segments per triangle, each solved exactly.
+    Scene scene = makeBuiltinScene("rotating-cube", withOption("keys", "5"));
+    validateScene(scene);
+    RenderStats stats;
+    const Image an = render("analytic", scene, 96, 72, OptionMap(), &stats, ShadingMode::Phong);
+    EXPECT_EQ(stats.counter("segments_per_triangle"), 4.0);
+    EXPECT_GT(psnr(an, render("accumulation", scene, 96, 72, withOption("samples", "1024"), nullptr, ShadingMode::Phong)), 42.0);
+}
+
 TEST(AnalyticRenderer, CompressionKeepsTheBudgetAndDegradesGracefully) {
     // fence: many thin bars per pixel. A budget of 1 merges (counted), stays within the budget,
     // and still resembles the uncompressed image; tile culling changes nothing but the work.
