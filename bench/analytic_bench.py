@@ -17,13 +17,11 @@ Times are the "render" phase of --stats, the least of --repeats runs.
 usage: bench/analytic_bench.py [--streak build/streak] [--sections quality,compression,culling]
                                [--plot docs/analytic_compression.png] [--repeats 3]
 """
-import argparse
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import SCENES, Streak, machine  # noqa: E402
+from benchlib import SCENES, machine, run_sections  # noqa: E402
 
 
 def quality(streak):
@@ -111,22 +109,8 @@ def culling(streak):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--streak", default="build/streak")
-    parser.add_argument("--sections", default="quality,compression,culling")
-    parser.add_argument("--plot", default="docs/analytic_compression.png")
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
-    print(f"Machine: {machine()}. Least of {args.repeats} runs per timed render.\n")
-    with tempfile.TemporaryDirectory() as tmp:
-        streak = Streak(args.streak, tmp, args.repeats)
-        sections = args.sections.split(",")
-        if "quality" in sections:
-            quality(streak)
-        if "compression" in sections:
-            compression(streak, args.plot)
-        if "culling" in sections:
-            culling(streak)
+    run_sections({"quality": lambda s, a: quality(s), "compression": lambda s, a: compression(s, a.plot), "culling": lambda s, a: culling(s)},
+                 "docs/analytic_compression.png")
 
 
 if __name__ == "__main__":

@@ -1,9 +1,11 @@
 """Shared pieces of the benchmark scripts: running streak and reading its figures."""
+import argparse
 import json
 import os
 import platform
 import re
 import subprocess
+import tempfile
 
 SCENES = ["rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"]
 
@@ -44,3 +46,21 @@ def machine():
         m = re.search(r"model name\s*:\s*(.*)", open("/proc/cpuinfo").read())
         cpu = m.group(1) if m else cpu
     return f"{cpu}, {os.cpu_count()} cores ({platform.system()})"
+
+
+def run_sections(sections, default_plot):
+    """The scripts' command line: runs the chosen sections (name -> f(streak, args)) in order,
+    against one temporary folder, so references are rendered once."""
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--streak", default="build/streak")
+    parser.add_argument("--sections", default=",".join(sections))
+    parser.add_argument("--plot", default=default_plot)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    print(f"Machine: {machine()}. Least of {args.repeats} runs per timed render.\n")
+    chosen = args.sections.split(",")
+    with tempfile.TemporaryDirectory() as tmp:
+        streak = Streak(args.streak, tmp, args.repeats)
+        for name, section in sections.items():
+            if name in chosen:
+                section(streak, args)

@@ -17,13 +17,11 @@ quantization does not cap the PSNR.
 usage: bench/motion_path_bench.py [--streak build/streak] [--sections quality,sweep,params,default]
                                   [--plot docs/motion_path_sweep.png] [--repeats 3]
 """
-import argparse
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import SCENES, Streak, machine  # noqa: E402
+from benchlib import SCENES, machine, run_sections  # noqa: E402
 
 
 def quality(streak):
@@ -133,24 +131,8 @@ def default(streak):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--streak", default="build/streak")
-    parser.add_argument("--sections", default="quality,sweep,params,default")
-    parser.add_argument("--plot", default="docs/motion_path_sweep.png")
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
-    print(f"Machine: {machine()}. Least of {args.repeats} runs per timed render.\n")
-    with tempfile.TemporaryDirectory() as tmp:
-        streak = Streak(args.streak, tmp, args.repeats)
-        sections = args.sections.split(",")
-        if "quality" in sections:
-            quality(streak)
-        if "sweep" in sections:
-            sweep(streak, args.plot)
-        if "params" in sections:
-            params(streak)
-        if "default" in sections:
-            default(streak)
+    run_sections({"quality": lambda s, a: quality(s), "sweep": lambda s, a: sweep(s, a.plot), "params": lambda s, a: params(s), "default": lambda s, a: default(s)},
+                 "docs/motion_path_sweep.png")
 
 
 if __name__ == "__main__":

@@ -52,7 +52,12 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
                 minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
             }
             s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
-            s.isBackFacingThroughout = !triangles[tri].isDoubleSided && s.isInFront() && raster::isBackFacingThroughout(s.clip0, s.clip1);
+            if (s.isInFront()) {
+                if (raster::isBackFacingThroughout(s.clip0, s.clip1)) s.orientation = -1;
+                // Swapping two corners flips the orientation: back facing that way is front facing.
+                else if (raster::isBackFacingThroughout({s.clip0[0], s.clip0[2], s.clip0[1]}, {s.clip1[0], s.clip1[2], s.clip1[1]})) s.orientation = 1;
+            }
+            s.isBackFacingThroughout = !triangles[tri].isDoubleSided && s.orientation < 0;
             localBackFacing += s.isBackFacingThroughout;
         }
         backFacing += localBackFacing;

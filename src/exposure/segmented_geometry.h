@@ -24,6 +24,7 @@ struct TriangleSegment {
     std::array<glm::vec3, 3> world0{}, world1{};
     std::array<glm::vec3, 3> normal0{}, normal1{};  ///< zero for meshes without normals
     float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
+    std::int8_t orientation = 0;                     ///< +1 front facing throughout, -1 back facing throughout, 0 turns over (or reaches behind the eye)
     bool isBackFacingThroughout = false;             ///< single-sided and seen from behind at every time: never visible
 
     // A shutter time as the segment's parameter u in [0, 1].

@@ -87,7 +87,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const Material& material = scene.materials[materialIndex];
     const bool isLit = mode == ShadingMode::Phong;
 
-    int lightingTaps = 1;
+    int lightingTaps = 0;
     if (isLit) {
         // Each half of the span turns by these angles; the reflected ray turns by twice the
         // normal's turn, plus the view direction's.
@@ -97,15 +97,15 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         lightingTaps = std::clamp(int(std::ceil(2.0f * (2.0f * normalTurn + viewTurn) / settings.maxTurnPerTap)), 1,
                                   settings.maxLightingTaps);
     }
-    const SpanLighting lighting = isLit ? SpanLighting(scene, material, t0, t1, ends, lightingTaps, point)
-                                        : SpanLighting(scene, material, t0, t1, ends, 0, point);
+    std::optional<SpanLighting> lighting;
+    if (isLit) lighting.emplace(scene, material, t0, t1, ends, lightingTaps, point);
 
     // Vertex colours change slowly across a triangle: the one at mid-span serves the whole span.
     const glm::vec4 vertexColor = ends[1].vertexColor;
     if (material.baseColorTexture < 0) {
         const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, 0.0f, vertexColor);
         if (!isLit) return albedo;
-        return {albedo.color * lighting.mean().diffuse + lighting.mean().specular, albedo.alpha};
+        return {albedo.color * lighting->mean().diffuse + lighting->mean().specular, albedo.alpha};
     }
 
     const Texture& texture = scene.textures[std::size_t(material.baseColorTexture)];
@@ -131,7 +131,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         const float lod = std::max(pathLod, footprintLodAt(f));
         const glm::vec4 texel = texture.sample(uv, lod);
         if (isLit) {
-            const PhongTerms terms = lighting.at(f);
+            const PhongTerms terms = lighting->at(f);
             sum += glm::vec3(texel) * terms.diffuse;
             specularSum += terms.specular;
         } else {

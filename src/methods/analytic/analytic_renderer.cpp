@@ -171,11 +171,8 @@ private:
     // in u, whose largest value on [0, 1] is at an end or its vertex.
     static bool isOutsideTile(const exposure::TriangleSegment& s, const raster::MovingTriangle& moving, const glm::dvec2& lo,
                               const glm::dvec2& hi) {
-        if (!s.isInFront()) return false;
-        double orientation = 0.0;
-        if (raster::isBackFacingThroughout(s.clip0, s.clip1)) orientation = -1.0;
-        else if (raster::isBackFacingThroughout({s.clip0[0], s.clip0[2], s.clip0[1]}, {s.clip1[0], s.clip1[2], s.clip1[1]})) orientation = 1.0;
-        else return false;
+        if (s.orientation == 0) return false;
+        const double orientation = s.orientation;
         const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
         for (int e = 0; e < 3; ++e) {
             bool outside = true;
@@ -294,8 +291,8 @@ private:
                     const exposure::TriangleSegment& s = segments[list[k].source];
                     return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
                 };
-                backgroundWeight = analytic::resolveOpaque(list, scratch.weights, &exactDepth, &counters.misorderedTime);
-                counters.coveredPairTime += overlapTime(list);
+                backgroundWeight =
+                    analytic::resolveOpaque(list, scratch.weights, &exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
             } else {
                 backgroundWeight = analytic::resolveOpaque(list, scratch.weights);
             }
@@ -323,21 +320,6 @@ private:
         for (int py = rect.y0; py <= rect.y1; ++py)
             for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * width + px] = glm::vec3(0.0f);
         raster::addTileToImage(rect, spp, scratch.color, 1.0f, image, width);
-    }
-
-    // Covered time in which two or more intervals overlap: where depth order matters.
-    static double overlapTime(const std::vector<ExposureInterval>& list) {
-        std::vector<float> cuts;
-        for (const ExposureInterval& x : list) cuts.push_back(x.t0), cuts.push_back(x.t1);
-        std::sort(cuts.begin(), cuts.end());
-        double time = 0.0;
-        for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
-            const float tm = 0.5f * (cuts[c] + cuts[c + 1]);
-            int covering = 0;
-            for (const ExposureInterval& x : list) covering += x.t0 <= tm && x.t1 >= tm;
-            if (covering > 1) time += cuts[c + 1] - cuts[c];
-        }
-        return time;
     }
 
     ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,

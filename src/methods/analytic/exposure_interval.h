@@ -54,10 +54,11 @@ int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, cons
 //
 // exactDepth, when given, is the true depth of interval i at time t: the opaque resolve then
 // also adds to *misorderedTime the covered time in which the linear depths pick a different
-// nearest interval than the true depths would (the cost of the paper's linearisation).
+// nearest interval than the true depths would (the cost of the paper's linearisation), and to
+// *overlapTime, when given, the time two or more intervals cover (where order matters at all).
 using ExactDepth = std::function<double(std::size_t, float)>;
 float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ExactDepth* exactDepth = nullptr,
-                    double* misorderedTime = nullptr);
+                    double* misorderedTime = nullptr, double* overlapTime = nullptr);
 float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights);
 
 }  // namespace streak::analytic
