@@ -20,16 +20,13 @@ HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, cons
     const glm::dvec3 e(glm::dot(glm::cross(c1, c2), p), glm::dot(glm::cross(c2, c0), p), glm::dot(glm::cross(c0, c1), p));
     const double sum = e.x + e.y + e.z;
     HomogeneousSample s;
+    // det(c0, c1, c2) = w0 w1 w2 * (twice the NDC area): its sign is the orientation.
     s.isFrontFacing = glm::dot(c0, glm::cross(c1, c2)) > 0.0;
     if (sum == 0.0 || !std::isfinite(sum)) return s;
     s.bary = e / sum;
     s.viewDepth = s.bary.x * c0.z + s.bary.y * c1.z + s.bary.z * c2.z;
     s.isValid = true;
     return s;
-}
-
-bool isFrontFacing(const std::array<glm::vec4, 3>& clip) {
-    return glm::dot(xyw(clip[0]), glm::cross(xyw(clip[1]), xyw(clip[2]))) > 0.0;
 }
 
 MovingEdge movingEdge(const glm::dvec3& p0, const glm::dvec3& dp, const glm::dvec3& q0, const glm::dvec3& dq) {

@@ -25,10 +25,6 @@ struct HomogeneousSample {
 
 HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc);
 
-// Orientation alone: det(c0, c1, c2) in (x, y, w) is w0 w1 w2 times twice the NDC area, so with
-// all w > 0 its sign says counter-clockwise (front facing).
-bool isFrontFacing(const std::array<glm::vec4, 3>& clip);
-
 // A quadratic q(u) = a u^2 + b u + c.
 struct Quadratic {
     double a = 0.0, b = 0.0, c = 0.0;

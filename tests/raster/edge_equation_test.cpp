@@ -35,7 +35,9 @@ TEST(SolveQuadratic, RandomsAreRoots) {
         ASSERT_GE(n, 1);
         const double lo = std::min(r0, r1), hi = std::max(r0, r1);
         EXPECT_NEAR(r[0], lo, 1e-6);
-        if (n == 2) EXPECT_NEAR(r[1], hi, 1e-6);
+        if (n == 2) {
+            EXPECT_NEAR(r[1], hi, 1e-6);
+        }
     }
 }
 

@@ -130,7 +130,7 @@ public:
 
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         RenderStats& stats = context.stats;
-        stats.setCounter("segments_per_triangle", frame.numSegments);
+        stats.setCounter("segments_per_triangle", frame.segmented.numSegments());
         stats.setCounter("motion_paths", double(frame.paths.size()));
         stats.setCounter("path_faces_rasterized", double(total.pathFaces));
         stats.setCounter("backfacing_paths_skipped", double(frame.segmented.numBackFacing()));
@@ -166,7 +166,7 @@ private:
             : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
               pattern(raster::SamplePattern::stratified(settings.aa)),
               segmented(scene, float(settings.width) / float(settings.height), options.curveSegments),
-              geometry(segmented.flat()), numSegments(segmented.numSegments()), paths(segmented.segments()) {
+              geometry(segmented.flat()), paths(segmented.segments()) {
             spanShading.maxTextureTaps = options.textureSamples;
             spanShading.tapsPerTexel = options.tapsPerTexel;
         }
@@ -199,7 +199,6 @@ private:
         raster::SamplePattern pattern;
         exposure::SegmentedGeometry segmented;
         const FlatGeometry& geometry;
-        int numSegments;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
