@@ -1,6 +1,7 @@
 #include "methods/registry.h"
 
 #include "methods/accumulation/accumulation_renderer.h"
+#include "methods/accumulation_gl/accumulation_gl_renderer.h"
 #include "methods/analytic/analytic_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/stochastic/stochastic_renderer.h"
@@ -23,6 +24,8 @@ const std::array kMethods{
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
                createStochasticRenderer},
+    MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",
+               createAccumulationGlRenderer},
 };
 
 }  // namespace

@@ -27,6 +27,8 @@ public:
     int width(int level = 0) const { return m_levels[level].width; }
     int height(int level = 0) const { return m_levels[level].height; }
     int numLevels() const { return int(m_levels.size()); }
+    WrapMode wrapU() const { return m_wrapU; }
+    WrapMode wrapV() const { return m_wrapV; }
     const glm::vec4& texel(int level, int x, int y) const {
         const Level& l = m_levels[level];
         return l.texels[std::size_t(y) * l.width + x];

@@ -1,0 +1,131 @@
+// The scene on the GPU (gpu/scene_buffers.h): triangles, key poses, materials, camera, light.
+// Every GL method includes this file first; the layouts mirror scene_buffers.cpp.
+
+struct MaterialData {
+    vec4 baseColorOpacity;  // rgb base colour, opacity
+    vec4 phong;             // specular, shininess, alpha cutoff, unused
+    ivec4 info;             // texture (-1: none), alpha mode (0 opaque, 1 mask, 2 blend), double-sided, translucent
+};
+
+layout(std430, binding = 0) readonly buffer TriangleBuffer { uvec4 triangles[]; };        // v0, v1, v2, material
+layout(std430, binding = 1) readonly buffer KeyPositionBuffer { vec4 keyPositions[]; };   // xyz; key-major per mesh
+layout(std430, binding = 2) readonly buffer KeyNormalBuffer { vec4 keyNormals[]; };       // same layout; zero without normals
+layout(std430, binding = 3) readonly buffer VertexBuffer { uvec4 vertexInfo[]; };         // mesh, first key index, key stride
+layout(std430, binding = 4) readonly buffer VertexAttributeBuffer { vec4 vertexAttributes[]; };  // per vertex: colour, then (uv, 0, 0)
+layout(std430, binding = 5) readonly buffer MeshBuffer { uvec4 meshes[]; };               // keys, Bezier?, has normals, unused
+layout(std430, binding = 6) readonly buffer MaterialBuffer { MaterialData materials[]; };
+
+layout(std140, binding = 0) uniform SceneBlock {
+    vec4 u_eyeOpen;          // xyz camera position at t = 0
+    vec4 u_eyeClose;         // at t = 1
+    vec4 u_rotationOpen;     // world-from-camera quaternion (x, y, z, w)
+    vec4 u_rotationClose;
+    vec4 u_projection;       // focal f / aspect, f, zNear, camera moves (0 or 1)
+    vec4 u_toLight;
+    vec4 u_lightColor;
+    vec4 u_ambient;
+    vec4 u_background;
+    ivec4 u_viewport;        // width, height (in samples), pixels wide, pixels high
+    ivec4 u_flags;           // lit (Phong) 1 / unlit 0, sample grid N, unused, unused
+};
+
+uniform sampler2D u_textures[MAX_TEXTURES];
+
+const uint kMaterialMask = 0x7fffffffu;  // triangles[i].w: material, top bit double-sided
+
+// Motion weights (scene/motion.cpp): position(t) = sum of keys times weights.
+void motionWeights(uint numKeys, bool isBezier, float t, out int first, out int count, out float w[MAX_KEYS]) {
+    t = clamp(t, 0.0, 1.0);
+    for (int i = 0; i < MAX_KEYS; ++i) w[i] = 0.0;
+    if (!isBezier || numKeys == 2u) {
+        float x = t * float(numKeys - 1u);
+        int segment = min(int(x), int(numKeys) - 2);
+        float u = x - float(segment);
+        first = segment;
+        count = 2;
+        w[0] = 1.0 - u;
+        w[1] = u;
+        return;
+    }
+    int n = int(numKeys) - 1;
+    first = 0;
+    count = int(numKeys);
+    w[0] = 1.0;
+    for (int degree = 1; degree <= n; ++degree)
+        for (int i = degree; i >= 0; --i) {
+            float fromLeft = i > 0 ? w[i - 1] * t : 0.0;
+            float stay = i < degree ? w[i] * (1.0 - t) : 0.0;
+            w[i] = fromLeft + stay;
+        }
+}
+
+// World position and normal of global vertex v at shutter time t.
+void vertexAt(uint v, float t, out vec3 position, out vec3 normal) {
+    uvec4 info = vertexInfo[v];
+    uvec4 mesh = meshes[info.x];
+    int first, count;
+    float w[MAX_KEYS];
+    motionWeights(mesh.x, mesh.y != 0u, t, first, count, w);
+    position = vec3(0.0);
+    normal = vec3(0.0);
+    for (int i = 0; i < count; ++i) {
+        uint k = info.y + uint(first + i) * info.z;
+        position += keyPositions[k].xyz * w[i];
+        normal += keyNormals[k].xyz * w[i];
+    }
+}
+
+vec3 vertexPositionAt(uint v, float t) {
+    vec3 p, n;
+    vertexAt(v, t, p, n);
+    return p;
+}
+
+vec2 vertexUv(uint v) { return vertexAttributes[2u * v + 1u].xy; }
+vec4 vertexColor(uint v) { return vertexAttributes[2u * v]; }
+bool meshHasNormals(uint v) { return meshes[vertexInfo[v].x].z != 0u; }
+
+vec3 eyeAt(float t) { return mix(u_eyeOpen.xyz, u_eyeClose.xyz, t); }
+
+// glm::slerp of the camera's two orientations.
+vec4 slerpRotation(float t) {
+    vec4 x = u_rotationOpen, z = u_rotationClose;
+    float cosTheta = dot(x, z);
+    if (cosTheta < 0.0) {
+        z = -z;
+        cosTheta = -cosTheta;
+    }
+    if (cosTheta > 1.0 - 1.1920929e-7) return mix(x, z, t);
+    float angle = acos(cosTheta);
+    return (sin((1.0 - t) * angle) * x + sin(t * angle) * z) / sin(angle);
+}
+
+mat3 mat3FromQuat(vec4 q) {
+    float xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z, xz = q.x * q.z, xy = q.x * q.y, yz = q.y * q.z;
+    float wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+    return mat3(vec3(1.0 - 2.0 * (yy + zz), 2.0 * (xy + wz), 2.0 * (xz - wy)),
+                vec3(2.0 * (xy - wz), 1.0 - 2.0 * (xx + zz), 2.0 * (yz + wx)),
+                vec3(2.0 * (xz + wy), 2.0 * (yz - wx), 1.0 - 2.0 * (xx + yy)));
+}
+
+// Camera::clipFromWorld(t): infinite perspective, clip w = view depth.
+vec4 clipFromWorld(vec3 p, float t) {
+    vec3 eye = u_eyeOpen.xyz;
+    vec4 q = u_rotationOpen;
+    if (u_projection.w != 0.0) {
+        eye = eyeAt(t);
+        q = slerpRotation(t);
+    }
+    vec3 view = transpose(mat3FromQuat(q)) * (p - eye);
+    return vec4(view.x * u_projection.x, view.y * u_projection.y, -view.z - 2.0 * u_projection.z, -view.z);
+}
+
+// NDC of sample texel s (raster rows, top first): the CPU's stratified position, snapped to
+// 1/256 pixel (raster/sample_pattern.cpp).
+dvec2 sampleNdc(ivec2 s) {
+    int n = u_flags.y;
+    ivec2 pixel = s / n, sub = s - pixel * n;
+    dvec2 offset = floor((dvec2(sub) + 0.5) / double(n) * 256.0);
+    dvec2 raster = dvec2(pixel) + offset / 256.0;
+    return dvec2(2.0 * raster.x / double(u_viewport.z) - 1.0, 1.0 - 2.0 * raster.y / double(u_viewport.w));
+}

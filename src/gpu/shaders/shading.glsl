@@ -1,0 +1,112 @@
+// Shading shared by the GL methods, the GLSL twin of scene/shading.cpp: material albedo with
+// the glTF alpha modes, trilinear texture taps at an explicit level of detail, Phong lighting
+// split into what multiplies the albedo and what adds to it.
+
+struct SurfacePoint {
+    vec3 position;
+    vec3 normal;        // any length
+    vec2 uv;
+    vec2 duvdx, duvdy;  // uv change one pixel right and down
+    vec4 vertexColor;
+    uint material;
+    bool isFrontFacing;
+};
+
+// Texture `index` at uv and lod. The loop keeps the sampler index dynamically uniform.
+vec4 sampleTexture(int index, vec2 uv, float lod) {
+    vec4 texel = vec4(0.0);
+    if (isnan(uv.x) || isnan(uv.y)) return texel;
+    for (int i = 0; i < MAX_TEXTURES; ++i)
+        if (i == index) texel = textureLod(u_textures[i], uv, lod);
+    return texel;
+}
+
+// Texture::lodFromFootprint: log2 of the longer footprint axis in texels.
+float lodFromFootprint(int index, vec2 duvdx, vec2 duvdy) {
+    vec2 size = vec2(textureSize(u_textures[0], 0));
+    for (int i = 1; i < MAX_TEXTURES; ++i)
+        if (i == index) size = vec2(textureSize(u_textures[i], 0));
+    float lengthSquared = max(dot(duvdx * size, duvdx * size), dot(duvdy * size, duvdy * size));
+    return lengthSquared > 0.0 ? 0.5 * log2(lengthSquared) : 0.0;
+}
+
+vec2 textureSizeOf(int index) {
+    vec2 size = vec2(1.0);
+    for (int i = 0; i < MAX_TEXTURES; ++i)
+        if (i == index) size = vec2(textureSize(u_textures[i], 0));
+    return size;
+}
+
+bool isTranslucentMaterial(uint m) { return materials[m].info.w != 0; }
+
+// Material::alphaOf.
+float alphaOf(uint m, float pointAlpha) {
+    MaterialData mat = materials[m];
+    float opacity = mat.baseColorOpacity.w;
+    if (mat.info.y == 1) return opacity * pointAlpha >= mat.phong.z ? 1.0 : 0.0;
+    if (mat.info.y == 2) return opacity * pointAlpha;
+    return opacity;
+}
+
+// materialAlbedo: base colour times texture times vertex colour, and alpha through the mode.
+vec4 materialAlbedo(uint m, vec2 uv, float lod, vec4 vertexColor) {
+    MaterialData mat = materials[m];
+    vec4 texel = vec4(1.0);
+    if (mat.info.x >= 0) texel = sampleTexture(mat.info.x, uv, lod);
+    return vec4(mat.baseColorOpacity.rgb * texel.rgb * vertexColor.rgb, alphaOf(m, texel.a * vertexColor.a));
+}
+
+struct PhongTerms {
+    vec3 diffuse;   // times the albedo
+    vec3 specular;  // added
+};
+
+PhongTerms phongTerms(uint m, vec3 position, vec3 normal, bool isFrontFacing, vec3 eye) {
+    float len = length(normal);
+    if (!(len > 0.0)) return PhongTerms(u_ambient.rgb, vec3(0.0));
+    normal /= len;
+    if (!isFrontFacing) normal = -normal;
+    float diffuse = max(0.0, dot(normal, u_toLight.xyz));
+    PhongTerms terms = PhongTerms(u_ambient.rgb + u_lightColor.rgb * diffuse, vec3(0.0));
+    float specular = materials[m].phong.x;
+    if (diffuse > 0.0 && specular > 0.0) {
+        vec3 toEye = normalize(eye - position);
+        vec3 reflected = reflect(-u_toLight.xyz, normal);
+        float highlight = pow(max(0.0, dot(reflected, toEye)), materials[m].phong.y);
+        terms.specular = u_lightColor.rgb * (specular * highlight);
+    }
+    return terms;
+}
+
+bool isLit() { return u_flags.x != 0; }
+
+// shadeSurface: the colour and alpha of a point at one instant, seen from `eye`.
+vec4 shadeSurface(SurfacePoint p, vec3 eye) {
+    int tex = materials[p.material].info.x;
+    float lod = tex >= 0 ? lodFromFootprint(tex, p.duvdx, p.duvdy) : 0.0;
+    vec4 result = materialAlbedo(p.material, p.uv, lod, p.vertexColor);
+    if (isLit()) {
+        PhongTerms terms = phongTerms(p.material, p.position, p.normal, p.isFrontFacing, eye);
+        result.rgb = result.rgb * terms.diffuse + terms.specular;
+    }
+    return result;
+}
+
+// FlatGeometry::surfacePoint: what shading needs from triangle `tri` at one time, given its
+// corners then and the barycentrics at the sample and one pixel right and down.
+SurfacePoint surfacePoint(uint tri, vec3 corners[3], vec3 cornerNormals[3], vec3 bary, vec3 baryRight, vec3 baryDown,
+                          bool isFrontFacing) {
+    uvec4 t = triangles[tri];
+    SurfacePoint p;
+    p.position = bary.x * corners[0] + bary.y * corners[1] + bary.z * corners[2];
+    if (meshHasNormals(t.x)) p.normal = bary.x * cornerNormals[0] + bary.y * cornerNormals[1] + bary.z * cornerNormals[2];
+    else p.normal = cross(corners[1] - corners[0], corners[2] - corners[0]);
+    vec2 uv0 = vertexUv(t.x), uv1 = vertexUv(t.y), uv2 = vertexUv(t.z);
+    p.uv = bary.x * uv0 + bary.y * uv1 + bary.z * uv2;
+    p.duvdx = (baryRight.x * uv0 + baryRight.y * uv1 + baryRight.z * uv2) - p.uv;
+    p.duvdy = (baryDown.x * uv0 + baryDown.y * uv1 + baryDown.z * uv2) - p.uv;
+    p.vertexColor = bary.x * vertexColor(t.x) + bary.y * vertexColor(t.y) + bary.z * vertexColor(t.z);
+    p.material = t.w & kMaterialMask;
+    p.isFrontFacing = isFrontFacing;
+    return p;
+}
