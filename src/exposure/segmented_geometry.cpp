@@ -12,14 +12,18 @@
 
 namespace streak::exposure {
 
-SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curveSegments) : m_flat(scene) {
+int SegmentedGeometry::segmentCount(const Scene& scene, int curveSegments) {
     int maxKeys = 2;
     bool isCurved = !scene.camera.isStatic();
     for (const Mesh& mesh : scene.meshes) {
         maxKeys = std::max(maxKeys, mesh.numKeys);
         isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
     }
-    m_numSegments = (maxKeys - 1) * (isCurved ? std::max(1, curveSegments) : 1);
+    return (maxKeys - 1) * (isCurved ? std::max(1, curveSegments) : 1);
+}
+
+SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curveSegments) : m_flat(scene) {
+    m_numSegments = segmentCount(scene, curveSegments);
 
     const int n = m_numSegments;
     std::vector<std::vector<glm::vec3>> positions(std::size_t(n) + 1), normals(std::size_t(n) + 1);

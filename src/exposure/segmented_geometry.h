@@ -41,6 +41,10 @@ class SegmentedGeometry {
 public:
     SegmentedGeometry(const Scene& scene, float aspect, int curveSegments);
 
+    // How many linear segments each triangle's motion is cut into: one per key segment, or
+    // curveSegments per key segment where screen motion is curved.
+    static int segmentCount(const Scene& scene, int curveSegments);
+
     const Scene& scene() const { return m_flat.scene(); }
     const FlatGeometry& flat() const { return m_flat; }
     int numSegments() const { return m_numSegments; }

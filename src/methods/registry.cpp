@@ -4,6 +4,7 @@
 #include "methods/accumulation_gl/accumulation_gl_renderer.h"
 #include "methods/analytic/analytic_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
+#include "methods/motion_path_gl/motion_path_gl_renderer.h"
 #include "methods/stochastic/stochastic_renderer.h"
 #include "util/error.h"
 
@@ -24,6 +25,8 @@ const std::array kMethods{
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
                createStochasticRenderer},
+    MethodInfo{"motion-path-gl", "motion paths on the GPU (OpenGL 4.5, headless EGL), unfinished: agrees with motion-path only where screen motion is a translation",
+               createMotionPathGlRenderer},
     MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",
                createAccumulationGlRenderer},
 };

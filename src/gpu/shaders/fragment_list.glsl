@@ -18,9 +18,9 @@ const uint kEndOfList = 0xffffffffu;
 // Reserves a node for sample s; false when the sample's budget or the buffer is exhausted.
 // On success the caller writes node `index` with `next` as its successor.
 bool appendNode(ivec2 s, out uint index, out uint next) {
-#ifdef STAGE_FRAGMENT
-    // Helper invocations (kept alive for derivatives) must append nothing: llvmpipe runs
-    // their atomics.
+#if defined(LIST_SKIP_HELPERS) && defined(STAGE_FRAGMENT)
+    // Helper invocations (kept alive for derivatives) must append nothing. Only for shaders
+    // that take derivatives: llvmpipe flags some real fragments as helpers too.
     if (gl_HelperInvocation) return false;
 #endif
     if (imageAtomicAdd(u_counts, s, 1u) >= u_sampleBudget) {

@@ -125,7 +125,7 @@ vec4 clipFromWorld(vec3 p, float t) {
 dvec2 sampleNdc(ivec2 s) {
     int n = u_flags.y;
     ivec2 pixel = s / n, sub = s - pixel * n;
-    dvec2 offset = floor((dvec2(sub) + 0.5) / double(n) * 256.0);
+    dvec2 offset = dvec2(floor((vec2(sub) + 0.5) / float(n) * 256.0));  // exact in float
     dvec2 raster = dvec2(pixel) + offset / 256.0;
     return dvec2(2.0 * raster.x / double(u_viewport.z) - 1.0, 1.0 - 2.0 * raster.y / double(u_viewport.w));
 }

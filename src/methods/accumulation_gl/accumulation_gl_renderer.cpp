@@ -46,6 +46,7 @@ public:
             {{GL_VERTEX_SHADER, {"scene.glsl", "accumulation_gl.vert.glsl"}},
              {GL_FRAGMENT_SHADER, {"scene.glsl", "shading.glsl", "accumulation_gl.frag.glsl"}}}, defines);
         defines["TRANSLUCENT_PASS"] = "1";
+        defines["LIST_SKIP_HELPERS"] = "1";  // its fragment shader takes derivatives
         const gpu::GlProgram translucent = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "accumulation_gl.vert.glsl"}},
              {GL_FRAGMENT_SHADER, {"scene.glsl", "shading.glsl", "fragment_list.glsl", "accumulation_gl.frag.glsl"}}}, defines);

@@ -1,0 +1,194 @@
+#include "methods/motion_path_gl/motion_path_gl_renderer.h"
+
+#include "exposure/segmented_geometry.h"
+#include "gpu/fragment_lists.h"
+#include "gpu/gl_context.h"
+#include "gpu/gpu_timer.h"
+#include "gpu/sample_grid.h"
+#include "gpu/scene_buffers.h"
+#include "gpu/shader_library.h"
+#include "scene/flat_geometry.h"
+#include "util/error.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace streak {
+
+namespace {
+
+struct Options {
+    int maxFragments = 150;
+    int maxIntervals = 90;
+    int maskBits = 128;
+    int textureSamples = 32;
+    int tapsPerTexel = 2;
+    bool sortIntervals = true;
+    int curveSegments = 4;
+    int gpuMemoryMb = 1024;
+};
+
+constexpr std::size_t kNodeBytes = 24;     // PathNode, std430
+constexpr std::size_t kInitialNodesPerSample = 4;
+
+// The resolve pass's counters (ResolveCounterBuffer).
+struct ResolveCounters {
+    std::uint32_t intervalOverflowSamples, splits, cycles, shadedSpans, intervals, maxIntervals;
+};
+
+void setInt(GLuint program, const char* name, int value) { glProgramUniform1i(program, glGetUniformLocation(program, name), value); }
+
+class MotionPathGlRenderer final : public Renderer {
+public:
+    explicit MotionPathGlRenderer(const Options& options) : m_options(options) {}
+
+    Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
+        gpu::GlContext& gl = gpu::sharedContext();
+        const FlatGeometry geometry(scene);
+        const gpu::SampleGrid grid{settings.width, settings.height, settings.aa};
+        const int numSegments = exposure::SegmentedGeometry::segmentCount(scene, m_options.curveSegments);
+        std::optional<gpu::SceneBuffers> buffers;
+        {
+            PhaseTimer timer(context.stats, "upload");
+            buffers.emplace(geometry, settings.width, settings.height, settings.aa, settings.shading);
+        }
+        std::map<std::string, std::string> defines = buffers->defines();
+        defines["MAX_INTERVALS"] = std::to_string(m_options.maxIntervals);
+        const gpu::GlProgram paths = gpu::buildProgram(
+            {{GL_VERTEX_SHADER, {"scene.glsl", "motion_path_gl.vert.glsl"}},
+             {GL_GEOMETRY_SHADER, {"scene.glsl", "motion_path_gl.geom.glsl"}},
+             {GL_FRAGMENT_SHADER, {"scene.glsl", "fragment_list.glsl", "moving_triangle.glsl", "motion_path_gl.frag.glsl"}}},
+            defines);
+        const gpu::GlProgram resolve = gpu::buildProgram(
+            {{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "fragment_list.glsl", "moving_triangle.glsl", "depth_time.glsl",
+                                  "span_shading.glsl", "motion_path_gl_resolve.comp.glsl"}}},
+            defines);
+        for (GLuint program : {paths.id(), resolve.id()}) setInt(program, "u_numSegments", numSegments);
+        setInt(resolve.id(), "u_maskBits", m_options.maskBits);
+        setInt(resolve.id(), "u_sortIntervals", m_options.sortIntervals ? 1 : 0);
+        setInt(resolve.id(), "u_textureSamples", m_options.textureSamples);
+        glProgramUniform1f(resolve.id(), glGetUniformLocation(resolve.id(), "u_tapsPerTexel"), float(m_options.tapsPerTexel));
+
+        const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
+        const gpu::GlFramebuffer framebuffer;  // no attachments: pass 1 writes only its lists
+        glNamedFramebufferParameteri(framebuffer.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, grid.samplesWide());
+        glNamedFramebufferParameteri(framebuffer.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, grid.samplesHigh());
+        const gpu::GlTexture output(GL_RGBA32F, grid.samplesWide(), grid.samplesHigh());
+        const GLsizei numVertices = GLsizei(buffers->numTriangles() * 3);
+
+        // Pass 1, again with a larger buffer while it overflows (see the header).
+        const std::size_t capNodes = std::max<std::size_t>(1, std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20) / kNodeBytes);
+        std::size_t capacity = std::min(capNodes, std::max<std::size_t>(1024, grid.numSamples() * kInitialNodesPerSample));
+        std::uint32_t sampleBudget = std::uint32_t(m_options.maxFragments);
+        std::optional<gpu::FragmentLists> lists;
+        gpu::FragmentLists::Counts counts;
+        gpu::GpuTimer timer;
+        int renders = 0;
+        {
+            PhaseTimer wall(context.stats, "render");
+            glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+            glViewport(0, 0, grid.samplesWide(), grid.samplesHigh());
+            glBindVertexArray(vertexArray.id());
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_CULL_FACE);
+            for (;;) {
+                lists.emplace(grid, kNodeBytes, capacity);
+                lists->clear();
+                glUseProgram(paths.id());
+                buffers->bind(paths.id());
+                lists->bind(paths.id(), 7, sampleBudget);
+                timer.begin("rasterize paths");
+                for (int k = 0; k < numSegments; ++k) {
+                    setInt(paths.id(), "u_segment", k);
+                    glDrawArrays(GL_TRIANGLES, 0, numVertices);
+                }
+                timer.end();
+                ++renders;
+                counts = lists->counts();
+                if (!counts.isOverflowing(capacity)) break;
+                if (counts.asked <= capNodes) {
+                    capacity = std::min<std::size_t>(capNodes, counts.asked + counts.asked / 4);
+                } else {
+                    // Past the cap: a per-sample budget that the buffer always holds.
+                    capacity = capNodes;
+                    sampleBudget = std::uint32_t(std::max<std::size_t>(1, std::min<std::size_t>(sampleBudget, capNodes / grid.numSamples())));
+                }
+            }
+
+            const ResolveCounters zero{};
+            const gpu::GlBuffer resolveCounters(sizeof zero, &zero);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+            glUseProgram(resolve.id());
+            buffers->bind(resolve.id());
+            lists->bind(resolve.id(), 7, sampleBudget);
+            resolveCounters.bindStorage(9);
+            glBindImageTexture(2, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            timer.begin("resolve");
+            glDispatchCompute(GLuint((grid.samplesWide() + 7) / 8), GLuint((grid.samplesHigh() + 7) / 8), 1);
+            timer.end();
+            glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+            glFinish();
+            resolveCounters.download(&m_counters, sizeof m_counters);
+        }
+        gpu::checkGlError("rendering motion-path-gl");
+        timer.report(context.stats);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        Image image = gpu::readSampleGrid(output, grid);
+        if (context.progress) context.progress->update(1.0);
+
+        const double numSamples = double(grid.numSamples());
+        RenderStats& stats = context.stats;
+        stats.setInfo("gl_renderer", gl.renderer());
+        stats.setInfo("gl_version", gl.version());
+        stats.setCounter("segments_per_triangle", numSegments);
+        stats.setCounter("path_renders", renders);
+        stats.setCounter("list_capacity_nodes", double(capacity));
+        stats.setCounter("list_bytes", double(lists->bytes()));
+        stats.setCounter("fragments", double(counts.asked));
+        stats.setCounter("fragments_per_sample_mean", double(counts.asked) / numSamples);
+        stats.setCounter("fragment_overflow_spans", double(counts.budgetRefused));
+        stats.setCounter("sample_budget", sampleBudget);
+        stats.setCounter("backface_intervals_culled", double(counts.methodCounter));
+        stats.setCounter("intervals", double(m_counters.intervals));
+        stats.setCounter("intervals_per_sample_mean", double(m_counters.intervals) / numSamples);
+        stats.setCounter("intervals_per_sample_max", double(m_counters.maxIntervals));
+        stats.setCounter("interval_overflow_samples", double(m_counters.intervalOverflowSamples));
+        stats.setCounter("interval_splits", double(m_counters.splits));
+        stats.setCounter("sort_cycles", double(m_counters.cycles));
+        stats.setCounter("shaded_spans", double(m_counters.shadedSpans));
+        stats.setCounter("max_fragments", m_options.maxFragments);
+        stats.setCounter("max_intervals", m_options.maxIntervals);
+        stats.setCounter("mask_bits", m_options.maskBits);
+        stats.setCounter("texture_samples", m_options.textureSamples);
+        stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
+        stats.setCounter("curve_segments", m_options.curveSegments);
+        stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
+        return image;
+    }
+
+private:
+    Options m_options;
+    ResolveCounters m_counters{};
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createMotionPathGlRenderer(OptionMap& options) {
+    Options o;
+    o.maxFragments = options.getInt("max-fragments", 150, 2, 1 << 16);
+    o.maxIntervals = options.getInt("max-intervals", 90, 1, 512);
+    o.maskBits = options.getInt("mask-bits", 128, 32, 256);
+    if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
+        throw Error("method 'motion-path-gl': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
+    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
+    o.tapsPerTexel = options.getInt("taps-per-texel", 2, 1, 16);
+    o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
+    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.gpuMemoryMb = options.getInt("gpu-memory", 1024, 1, 1 << 20);
+    return std::make_unique<MotionPathGlRenderer>(o);
+}
+
+}  // namespace streak

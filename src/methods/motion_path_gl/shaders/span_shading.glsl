@@ -1,0 +1,195 @@
+// Span shading, the GLSL twin of scene/span_shading.cpp with exposure/triangle_surface_point:
+// the mean colour and alpha of a triangle under one sample over [t0, t1]. Texture taps sit at
+// exact times along the uv path (a ratio of quadratics), as many as the footprint's mip level
+// needs, at most u_textureSamples (past which the level rises to length / k); lighting is
+// Simpson's rule, or more taps where the normal or view turns.
+
+uniform int u_numSegments;  // linear segments per triangle
+uniform int u_textureSamples;
+uniform float u_tapsPerTexel;
+const float kMaxTurnPerTap = 0.4;
+const int kMaxLightingTaps = 16;
+
+// A triangle under one sample, with the segment last used (taps come in time order).
+struct SpanPoint {
+    uint triangle;
+    dvec2 ndc;
+    int segment;  // -1: none yet
+    MovingTriangle moving;
+    vec3 world0[3], world1[3], normal0[3], normal1[3];
+    double segmentT0, segmentT1;
+    dvec2 uvNumerator[3];  // u^2, u, 1 coefficients
+    dvec3 uvDenominator;
+};
+
+SpanPoint spanPoint(uint tri, dvec2 ndc) {
+    SpanPoint p;
+    p.triangle = tri;
+    p.ndc = ndc;
+    p.segment = -1;
+    return p;
+}
+
+void selectSegment(inout SpanPoint p, float t) {
+    int k = clamp(int(t * float(u_numSegments)), 0, u_numSegments - 1);
+    if (k == p.segment) return;
+    p.segment = k;
+    float t0 = float(k) / float(u_numSegments), t1 = float(k + 1) / float(u_numSegments);
+    p.segmentT0 = double(t0);
+    p.segmentT1 = double(t1);
+    vec4 open[3], close[3];
+    uvec4 tri = triangles[p.triangle];
+    for (int i = 0; i < 3; ++i) {
+        vertexAt(tri[i], t0, p.world0[i], p.normal0[i]);
+        vertexAt(tri[i], t1, p.world1[i], p.normal1[i]);
+        open[i] = clipFromWorld(p.world0[i], t0);
+        close[i] = clipFromWorld(p.world1[i], t1);
+    }
+    p.moving = movingTriangle(open, close);
+    // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
+    p.uvDenominator = dvec3(0.0);
+    for (int i = 0; i < 3; ++i) {
+        dvec3 e = edgeFunction(p.moving, (i + 1) % 3, p.ndc);
+        dvec2 uv = dvec2(vertexUv(tri[i]));
+        p.uvNumerator[0] = (i == 0 ? dvec2(0.0) : p.uvNumerator[0]) + e.x * uv;
+        p.uvNumerator[1] = (i == 0 ? dvec2(0.0) : p.uvNumerator[1]) + e.y * uv;
+        p.uvNumerator[2] = (i == 0 ? dvec2(0.0) : p.uvNumerator[2]) + e.z * uv;
+        p.uvDenominator += e;
+    }
+}
+
+double localTime(SpanPoint p, float t) { return (double(t) - p.segmentT0) / (p.segmentT1 - p.segmentT0); }
+
+bool surfaceAt(inout SpanPoint p, float t, bool withFootprint, out SurfacePoint out_) {
+    selectSegment(p, t);
+    double u = localTime(p, t);
+    HomogeneousSample s, right, down;
+    dvec2 pixel = dvec2(2.0 / double(u_viewport.z), 2.0 / double(u_viewport.w));
+    sampleWithNeighbours(p.moving, u, p.ndc, dvec2(pixel.x, 0.0), dvec2(0.0, -pixel.y), s, right, down);
+    if (!s.isValid) return false;
+    dvec3 baryRight = s.bary, baryDown = s.bary;
+    if (withFootprint && right.isValid && down.isValid && right.viewDepth > 0.0 && down.viewDepth > 0.0) {
+        baryRight = right.bary;
+        baryDown = down.bary;
+    }
+    vec3 world[3], normal[3];
+    float uf = float(u);
+    for (int i = 0; i < 3; ++i) {
+        world[i] = mix(p.world0[i], p.world1[i], uf);
+        normal[i] = mix(p.normal0[i], p.normal1[i], uf);
+    }
+    out_ = surfacePoint(p.triangle, world, normal, vec3(s.bary), vec3(baryRight), vec3(baryDown), s.isFrontFacing);
+    return true;
+}
+
+bool uvAt(inout SpanPoint p, float t, out vec2 uv) {
+    selectSegment(p, t);
+    double u = localTime(p, t);
+    double denominator = quadraticAt(p.uvDenominator, u);
+    uv = vec2(0.0);
+    if (denominator == 0.0 || isinf(denominator) || isnan(denominator)) return false;
+    uv = vec2(((p.uvNumerator[0] * u + p.uvNumerator[1]) * u + p.uvNumerator[2]) / denominator);
+    return true;
+}
+
+float turnBetween(vec3 a, vec3 b) {
+    float la = length(a), lb = length(b);
+    if (!(la > 0.0) || !(lb > 0.0)) return 0.0;
+    return length(a / la - b / lb);
+}
+
+// The quadratic through (0, a), (1/2, m), (1, b) at f.
+vec3 quadraticThrough(vec3 a, vec3 m, vec3 b, float f) {
+    return a + f * ((-3.0 * a + 4.0 * m - b) + f * (2.0 * a - 4.0 * m + 2.0 * b));
+}
+
+vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
+    SpanPoint point = spanPoint(tri, ndc);
+    float times[3] = float[3](t0, 0.5 * (t0 + t1), t1);
+    SurfacePoint ends[3];
+    for (int i = 0; i < 3; ++i)
+        if (!surfaceAt(point, times[i], true, ends[i])) return vec4(0.0);
+    uint m = ends[1].material;
+    bool lit = isLit();
+
+    // Lighting: Simpson's three points, or n midpoint taps where the surface turns.
+    int lightingTaps = 0;
+    PhongTerms simpson[3];
+    PhongTerms taps[kMaxLightingTaps];
+    vec3 meanDiffuse = vec3(0.0), meanSpecular = vec3(0.0);
+    if (lit) {
+        float normalTurn = max(turnBetween(ends[0].normal, ends[1].normal), turnBetween(ends[1].normal, ends[2].normal));
+        vec3 e0 = eyeAt(times[0]) - ends[0].position, e1 = eyeAt(times[1]) - ends[1].position, e2 = eyeAt(times[2]) - ends[2].position;
+        float viewTurn = max(turnBetween(e0, e1), turnBetween(e1, e2));
+        lightingTaps = clamp(int(ceil(2.0 * (2.0 * normalTurn + viewTurn) / kMaxTurnPerTap)), 1, kMaxLightingTaps);
+        if (lightingTaps <= 3) {
+            for (int i = 0; i < 3; ++i) simpson[i] = phongTerms(m, ends[i].position, ends[i].normal, ends[i].isFrontFacing, eyeAt(times[i]));
+            meanDiffuse = (simpson[0].diffuse + 4.0 * simpson[1].diffuse + simpson[2].diffuse) / 6.0;
+            meanSpecular = (simpson[0].specular + 4.0 * simpson[1].specular + simpson[2].specular) / 6.0;
+        } else {
+            int used = 0;
+            for (int i = 0; i < lightingTaps; ++i) {
+                float t = t0 + (float(i) + 0.5) / float(lightingTaps) * (t1 - t0);
+                SurfacePoint sp;
+                if (surfaceAt(point, t, false, sp)) taps[used++] = phongTerms(m, sp.position, sp.normal, sp.isFrontFacing, eyeAt(t));
+                else if (used > 0) taps[used] = taps[used - 1], ++used;
+            }
+            if (used == 0) taps[used++] = phongTerms(m, ends[1].position, ends[1].normal, ends[1].isFrontFacing, eyeAt(times[1]));
+            lightingTaps = used;
+            for (int i = 0; i < used; ++i) meanDiffuse += taps[i].diffuse, meanSpecular += taps[i].specular;
+            meanDiffuse /= float(used);
+            meanSpecular /= float(used);
+        }
+    }
+
+    vec4 vertexColor = ends[1].vertexColor;
+    MaterialData mat = materials[m];
+    if (mat.info.x < 0) {
+        vec4 albedo = materialAlbedo(m, ends[1].uv, 0.0, vertexColor);
+        if (!lit) return albedo;
+        return vec4(albedo.rgb * meanDiffuse + meanSpecular, albedo.a);
+    }
+
+    int tex = mat.info.x;
+    vec2 size = textureSizeOf(tex);
+    float footprintLod[3];
+    for (int i = 0; i < 3; ++i) footprintLod[i] = lodFromFootprint(tex, ends[i].duvdx, ends[i].duvdy);
+    vec2 a = abs(ends[1].uv - ends[0].uv) * size, b = abs(ends[2].uv - ends[1].uv) * size;
+    float pathTexels = max(a.x + b.x, a.y + b.y);
+    float spacing = exp2(max(0.0, min(footprintLod[0], min(footprintLod[1], footprintLod[2]))));
+    int numTaps = clamp(int(ceil(u_tapsPerTexel * pathTexels / spacing)), 1, u_textureSamples);
+    float pathLod = log2(max(pathTexels / float(u_textureSamples), 1e-8));
+
+    vec3 sum = vec3(0.0), specularSum = vec3(0.0);
+    float alphaSum = 0.0;
+    int used = 0;
+    for (int i = 0; i < numTaps; ++i) {
+        float f = (float(i) + 0.5) / float(numTaps);
+        vec2 uv = ends[1].uv;
+        if (2 * i + 1 != numTaps && !uvAt(point, t0 + f * (t1 - t0), uv)) continue;
+        float lodAt = quadraticThrough(vec3(footprintLod[0]), vec3(footprintLod[1]), vec3(footprintLod[2]), f).x;
+        vec4 texel = sampleTexture(tex, uv, max(pathLod, lodAt));
+        if (lit) {
+            vec3 diffuse, specular;
+            if (lightingTaps <= 3) {
+                diffuse = quadraticThrough(simpson[0].diffuse, simpson[1].diffuse, simpson[2].diffuse, f);
+                specular = quadraticThrough(simpson[0].specular, simpson[1].specular, simpson[2].specular, f);
+            } else {
+                float x = clamp(f * float(lightingTaps) - 0.5, 0.0, float(lightingTaps - 1));
+                int j = min(int(x), lightingTaps - 1), k = min(j + 1, lightingTaps - 1);
+                float w = x - float(j);
+                diffuse = mix(taps[j].diffuse, taps[k].diffuse, w);
+                specular = mix(taps[j].specular, taps[k].specular, w);
+            }
+            sum += texel.rgb * diffuse;
+            specularSum += specular;
+        } else {
+            sum += texel.rgb;
+        }
+        alphaSum += alphaOf(m, texel.a * vertexColor.a);
+        ++used;
+    }
+    if (used == 0) return vec4(0.0);
+    float scale = 1.0 / float(used);
+    return vec4(mat.baseColorOpacity.rgb * vertexColor.rgb * sum * scale + specularSum * scale, alphaSum * scale);
+}
