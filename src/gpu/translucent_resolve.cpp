@@ -27,12 +27,20 @@ bool hasTranslucentMaterial(const FlatGeometry& geometry) {
 
 }  // namespace
 
-TranslucentResolve::TranslucentResolve(const SampleGrid& grid, const SceneBuffers& buffers, const FlatGeometry& geometry, int layers,
-                                       int gpuMemoryMb)
-    : m_grid(grid), m_buffers(buffers), m_hasTranslucent(hasTranslucentMaterial(geometry)), m_sampleBudget(std::uint32_t(layers) * 4u),
-      m_lists(grid, kNodeBytes, listCapacity(grid, m_hasTranslucent, layers, gpuMemoryMb)) {
+TranslucentOptions TranslucentOptions::read(OptionMap& options) {
+    TranslucentOptions o;
+    o.layers = options.getInt("layers", o.layers, 1, 256);
+    o.gpuMemoryMb = options.getInt("gpu-memory", o.gpuMemoryMb, 16, 1 << 20);
+    return o;
+}
+
+TranslucentResolve::TranslucentResolve(const SampleGrid& grid, const SceneBuffers& buffers, const FlatGeometry& geometry,
+                                       const TranslucentOptions& options)
+    : m_grid(grid), m_buffers(buffers), m_hasTranslucent(hasTranslucentMaterial(geometry)),
+      m_sampleBudget(std::uint32_t(options.layers) * 4u),
+      m_lists(grid, kNodeBytes, listCapacity(grid, m_hasTranslucent, options.layers, options.gpuMemoryMb)) {
     std::map<std::string, std::string> defines = buffers.defines();
-    defines["MAX_LAYERS"] = std::to_string(layers);
+    defines["MAX_LAYERS"] = std::to_string(options.layers);
     m_program = buildProgram(
         {{GL_COMPUTE_SHADER, {"scene.glsl", "fragment_list.glsl", "translucent_node.glsl", "translucent_resolve.comp.glsl"}}}, defines);
     m_lists.clear();

@@ -5,11 +5,21 @@
 #include "gpu/sample_grid.h"
 #include "gpu/scene_buffers.h"
 #include "scene/flat_geometry.h"
+#include "util/options.h"
 #include "util/stats.h"
 
 #include <cstdint>
 
 namespace streak::gpu {
+
+// The translucency options of the GL methods: layers (fragments blended per sample and pass,
+// default 64: the nearest are kept, overflow counted) and gpu-memory (MB for the lists,
+// default 1024).
+struct TranslucentOptions {
+    int layers = 64;
+    int gpuMemoryMb = 1024;
+    static TranslucentOptions read(OptionMap& options);
+};
 
 // TranslucentResolve is translucency for the GL methods, the twin of raster/translucency.cpp:
 // per-sample lists that a pass fills with shaded fragments (shaders/translucent_node.glsl
@@ -21,7 +31,8 @@ class TranslucentResolve {
 public:
     // Without translucent materials in `geometry` the lists get one node, and resolve() only
     // adds the opaque colour (or the background) to the sum.
-    TranslucentResolve(const SampleGrid& grid, const SceneBuffers& buffers, const FlatGeometry& geometry, int layers, int gpuMemoryMb);
+    TranslucentResolve(const SampleGrid& grid, const SceneBuffers& buffers, const FlatGeometry& geometry,
+                       const TranslucentOptions& options);
 
     bool hasTranslucent() const { return m_hasTranslucent; }
 

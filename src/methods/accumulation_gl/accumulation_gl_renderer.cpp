@@ -1,17 +1,11 @@
 #include "methods/accumulation_gl/accumulation_gl_renderer.h"
 
-#include "gpu/gl_context.h"
+#include "gpu/gpu_frame.h"
 #include "gpu/gpu_timer.h"
-#include "gpu/sample_grid.h"
-#include "gpu/scene_buffers.h"
 #include "gpu/shader_library.h"
 #include "gpu/translucent_resolve.h"
-#include "scene/flat_geometry.h"
-#include "util/error.h"
 
-#include <algorithm>
 #include <map>
-#include <optional>
 #include <string>
 
 namespace streak {
@@ -20,8 +14,7 @@ namespace {
 
 struct Options {
     int samples = 256;
-    int layers = 64;
-    int gpuMemoryMb = 1024;
+    gpu::TranslucentOptions translucent;
 };
 
 class AccumulationGlRenderer final : public Renderer {
@@ -29,15 +22,10 @@ public:
     explicit AccumulationGlRenderer(const Options& options) : m_options(options) {}
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
-        gpu::GlContext& gl = gpu::sharedContext();
-        const FlatGeometry geometry(scene);
-        const gpu::SampleGrid grid{settings.width, settings.height, settings.aa};
-        std::optional<gpu::SceneBuffers> buffers;
-        {
-            PhaseTimer timer(context.stats, "upload");
-            buffers.emplace(geometry, settings.width, settings.height, settings.aa, settings.shading);
-        }
-        std::map<std::string, std::string> defines = buffers->defines();
+        const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.shading, context.stats);
+        const gpu::SampleGrid& grid = frame.grid;
+        const gpu::SceneBuffers& buffers = frame.buffers;
+        std::map<std::string, std::string> defines = buffers.defines();
         defines["TRANSLUCENT_PASS"] = "0";
         const gpu::GlProgram opaque = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "accumulation_gl.vert.glsl"}},
@@ -49,27 +37,21 @@ public:
               {"scene.glsl", "shading.glsl", "fragment_list.glsl", "translucent_node.glsl", "accumulation_gl.frag.glsl"}}},
             defines);
 
-        gpu::TranslucentResolve translucency(grid, *buffers, geometry, m_options.layers, m_options.gpuMemoryMb);
-        const gpu::GlTexture colorTarget(GL_RGBA32F, grid.samplesWide(), grid.samplesHigh());
-        const gpu::GlTexture depthTarget(GL_DEPTH_COMPONENT32F, grid.samplesWide(), grid.samplesHigh());
+        gpu::TranslucentResolve translucency(grid, buffers, frame.geometry, m_options.translucent);
+        const gpu::SampleFramebuffer target(grid);
         const gpu::GlTexture sum(GL_RGBA32F, grid.samplesWide(), grid.samplesHigh());
-        const gpu::GlFramebuffer framebuffer;
-        glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, colorTarget.id(), 0);
-        glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depthTarget.id(), 0);
-        if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("OpenGL: the accumulation-gl framebuffer is incomplete");
         const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
         const float zero[4] = {0, 0, 0, 0};
         glClearTexImage(sum.id(), 0, GL_RGBA, GL_FLOAT, zero);
 
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
         glViewport(0, 0, grid.samplesWide(), grid.samplesHigh());
         glBindVertexArray(vertexArray.id());
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);  // single-sided triangles are culled per material in the shader
         glFrontFace(GL_CW);       // y is flipped to raster rows, which mirrors the winding
-        const GLsizei numVertices = GLsizei(buffers->numTriangles() * 3);
+        const GLsizei numVertices = GLsizei(buffers.numTriangles() * 3);
         gpu::GpuTimer timer;
         {
             PhaseTimer wall(context.stats, "render");
@@ -81,7 +63,7 @@ public:
                 glClearBufferfv(GL_COLOR, 0, zero);
                 glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
                 glUseProgram(opaque.id());
-                buffers->bind(opaque.id());
+                buffers.bind(opaque.id());
                 glProgramUniform1f(opaque.id(), glGetUniformLocation(opaque.id(), "u_time"), t);
                 glDrawArrays(GL_TRIANGLES, 0, numVertices);
                 if (translucency.hasTranslucent()) {
@@ -91,12 +73,12 @@ public:
                     glDepthMask(GL_FALSE);
                     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
                     glUseProgram(translucent.id());
-                    buffers->bind(translucent.id());
+                    buffers.bind(translucent.id());
                     translucency.bindForAppending(translucent.id());
                     glProgramUniform1f(translucent.id(), glGetUniformLocation(translucent.id(), "u_time"), t);
                     glDrawArrays(GL_TRIANGLES, 0, numVertices);
                 }
-                translucency.resolve(colorTarget, sum);
+                translucency.resolve(target.color, sum);
                 if (context.progress) context.progress->update(double(s + 1) / m_options.samples);
             }
             timer.end();
@@ -108,11 +90,9 @@ public:
         Image image = gpu::readSampleGrid(sum, grid, 1.0f / float(m_options.samples));
 
         RenderStats& stats = context.stats;
-        stats.setInfo("gl_renderer", gl.renderer());
-        stats.setInfo("gl_version", gl.version());
         stats.setCounter("time_samples", m_options.samples);
         translucency.report(stats);
-        stats.setCounter("gpu_memory_bytes", double(buffers->uploadBytes() + translucency.bytes() + grid.numSamples() * 16 * 3));
+        stats.setCounter("gpu_memory_bytes", double(buffers.uploadBytes() + translucency.bytes() + grid.numSamples() * 16 * 3));
         return image;
     }
 
@@ -127,8 +107,7 @@ private:
 std::unique_ptr<Renderer> createAccumulationGlRenderer(OptionMap& options) {
     Options o;
     o.samples = options.getInt("samples", 256, 1, 1 << 20);
-    o.layers = options.getInt("layers", 64, 1, 256);
-    o.gpuMemoryMb = options.getInt("gpu-memory", 1024, 16, 1 << 20);
+    o.translucent = gpu::TranslucentOptions::read(options);
     return std::make_unique<AccumulationGlRenderer>(o);
 }
 
