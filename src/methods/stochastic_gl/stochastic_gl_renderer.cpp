@@ -106,6 +106,7 @@ public:
                 glBindFramebuffer(GL_FRAMEBUFFER, opaqueTarget.framebuffer.id());
                 glEnable(GL_DEPTH_TEST);
                 glDepthMask(GL_TRUE);
+                glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);  // another GL method may have left it off
                 glClearBufferfv(GL_COLOR, 0, zero);
                 glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
                 drawStratum(opaque, t0, t1);
