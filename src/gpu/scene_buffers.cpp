@@ -2,6 +2,7 @@
 
 #include "util/error.h"
 
+#include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/vec4.hpp>
 
@@ -14,7 +15,7 @@ namespace {
 
 // The std140 block SceneBlock of scene.glsl.
 struct SceneBlock {
-    glm::vec4 eyeOpen, eyeClose, rotationOpen, rotationClose, projection, toLight, lightColor, ambient, background;
+    glm::vec4 eyeOpen, eyeClose, rotationOpen, rotationClose, slerp, projection, toLight, lightColor, ambient, background;
     glm::ivec4 viewport, flags;
 };
 
@@ -91,7 +92,12 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
     block.eyeOpen = glm::vec4(camera.open.position, 1.0f);
     block.eyeClose = glm::vec4(camera.close.position, 1.0f);
     block.rotationOpen = quaternion(camera.open.worldFromCamera);
-    block.rotationClose = quaternion(camera.close.worldFromCamera);
+    // glm::slerp's choices and its angle, so shaders need no acos (scene.glsl, slerpRotation).
+    const float cosTheta = glm::dot(camera.open.worldFromCamera, camera.close.worldFromCamera);
+    const glm::quat close = cosTheta < 0.0f ? -camera.close.worldFromCamera : camera.close.worldFromCamera;
+    const float angle = std::acos(std::abs(cosTheta));
+    block.rotationClose = quaternion(close);
+    block.slerp = glm::vec4(angle, std::sin(angle), std::abs(cosTheta) > 1.0f - glm::epsilon<float>() ? 1.0f : 0.0f, 0.0f);
     block.projection = glm::vec4(f / aspect, f, camera.zNear, camera.isStatic() ? 0.0f : 1.0f);
     block.toLight = glm::vec4(scene.light.toLight, 0.0f);
     block.lightColor = glm::vec4(scene.light.color, 0.0f);

@@ -6,6 +6,7 @@
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
 #include "methods/stochastic/stochastic_renderer.h"
+#include "methods/stochastic_gl/stochastic_gl_renderer.h"
 #include "util/error.h"
 
 #include <array>
@@ -29,6 +30,8 @@ const std::array kMethods{
                createMotionPathGlRenderer},
     MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",
                createAccumulationGlRenderer},
+    MethodInfo{"stochastic-gl", "stochastic rasterization on the GPU (OpenGL 4.5): per-sample times, space-time bounds (samples=8)",
+               createStochasticGlRenderer},
 };
 
 }  // namespace

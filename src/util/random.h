@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace streak {
@@ -23,6 +24,14 @@ inline std::uint64_t hashValues(std::uint64_t a, std::uint64_t b, std::uint64_t 
 
 // A float in [0, 1) from the top 24 bits of a hash.
 inline float unitFloat(std::uint64_t bits) { return float(bits >> 40) * (1.0f / 16777216.0f); }
+
+// The shutter time of one pixel sample in time stratum j of S: [j/S, (j+1)/S) jittered by a hash
+// of the seed, the pixel (y * width + x), the sample's index in the pixel and j. Stochastic
+// rasterization's per-sample time: one definition, so its CPU and GPU methods agree.
+inline float stratifiedSampleTime(std::uint64_t seed, std::uint64_t pixel, int sample, int stratum, int numStrata) {
+    const float jitter = unitFloat(hashValues(seed, pixel, std::uint64_t(sample), std::uint64_t(stratum)));
+    return std::min((float(stratum) + jitter) / float(numStrata), 1.0f);
+}
 
 // Rng is a small sequential generator (SplitMix64) for building scenes.
 class Rng {

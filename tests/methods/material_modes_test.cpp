@@ -10,10 +10,12 @@ namespace streak {
 
 namespace {
 
-// Each method with its default options, but stochastic with enough time samples per pixel
-// (64) that stratified coverage is within 1/32.
+bool isStochastic(std::string_view method) { return method == "stochastic" || method == "stochastic-gl"; }
+
+// Each method with its default options, but stochastic (CPU and GL) with enough time samples
+// per pixel (64) that stratified coverage is within 1/32.
 Image render(const std::string& method, const Scene& scene, int width, int height) {
-    return test::render(method, scene, width, height, method == "stochastic" ? test::withOption("samples", "64") : OptionMap());
+    return test::render(method, scene, width, height, isStochastic(method) ? test::withOption("samples", "64") : OptionMap());
 }
 
 // A white material whose texture is texels of the given alphas in one row (nearest texels
@@ -78,7 +80,7 @@ TEST(MaterialModes, MovingMaskAveragesToCoverage) {
     for (const MethodInfo& method : registeredMethods()) {
         SCOPED_TRACE(std::string(method.name));
         const Image image = render(std::string(method.name), scene, 16, 4);
-        const bool isInstants = method.name == "accumulation" || method.name == "stochastic";
+        const bool isInstants = method.name == "accumulation" || isStochastic(method.name);
         const float tolerance = isInstants ? 1.0f / 32 : 1.0f / 8;
         for (int x : {2, 5, 9})
             for (int y : {1, 2}) {

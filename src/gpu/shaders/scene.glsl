@@ -19,7 +19,8 @@ layout(std140, binding = 0) uniform SceneBlock {
     vec4 u_eyeOpen;          // xyz camera position at t = 0
     vec4 u_eyeClose;         // at t = 1
     vec4 u_rotationOpen;     // world-from-camera quaternion (x, y, z, w)
-    vec4 u_rotationClose;
+    vec4 u_rotationClose;    // negated where that is the shorter way from u_rotationOpen
+    vec4 u_slerp;            // angle between the rotations, its sine, 1 where glm::slerp mixes linearly, unused
     vec4 u_projection;       // focal f / aspect, f, zNear, camera moves (0 or 1)
     vec4 u_toLight;
     vec4 u_lightColor;
@@ -53,9 +54,11 @@ void motionWeights(uint numKeys, bool isBezier, float t, out int first, out int 
     w[0] = 1.0;
     for (int degree = 1; degree <= n; ++degree)
         for (int i = degree; i >= 0; --i) {
-            float fromLeft = i > 0 ? w[i - 1] * t : 0.0;
-            float stay = i < degree ? w[i] * (1.0 - t) : 0.0;
-            w[i] = fromLeft + stay;
+            // precise: no fused multiply-adds, so the weights round as the CPU's do.
+            precise float fromLeft = i > 0 ? w[i - 1] * t : 0.0;
+            precise float stay = i < degree ? w[i] * (1.0 - t) : 0.0;
+            precise float weight = fromLeft + stay;
+            w[i] = weight;
         }
 }
 
@@ -66,13 +69,14 @@ void vertexAt(uint v, float t, out vec3 position, out vec3 normal) {
     int first, count;
     float w[MAX_KEYS];
     motionWeights(mesh.x, mesh.y != 0u, t, first, count, w);
-    position = vec3(0.0);
-    normal = vec3(0.0);
+    precise vec3 p = vec3(0.0), n = vec3(0.0);  // summed as the CPU sums (MotionWeights::apply)
     for (int i = 0; i < count; ++i) {
         uint k = info.y + uint(first + i) * info.z;
-        position += keyPositions[k].xyz * w[i];
-        normal += keyNormals[k].xyz * w[i];
+        p += keyPositions[k].xyz * w[i];
+        n += keyNormals[k].xyz * w[i];
     }
+    position = p;
+    normal = n;
 }
 
 vec3 vertexPositionAt(uint v, float t) {
@@ -87,17 +91,13 @@ bool meshHasNormals(uint v) { return meshes[vertexInfo[v].x].z != 0u; }
 
 vec3 eyeAt(float t) { return mix(u_eyeOpen.xyz, u_eyeClose.xyz, t); }
 
-// glm::slerp of the camera's two orientations.
+// glm::slerp of the camera's two orientations. Its angle and sine come from the CPU: GL's acos
+// is an approximation, and llvmpipe's moved a turning camera's view enough to flip samples.
 vec4 slerpRotation(float t) {
     vec4 x = u_rotationOpen, z = u_rotationClose;
-    float cosTheta = dot(x, z);
-    if (cosTheta < 0.0) {
-        z = -z;
-        cosTheta = -cosTheta;
-    }
-    if (cosTheta > 1.0 - 1.1920929e-7) return mix(x, z, t);
-    float angle = acos(cosTheta);
-    return (sin((1.0 - t) * angle) * x + sin(t * angle) * z) / sin(angle);
+    if (u_slerp.z != 0.0) return mix(x, z, t);
+    precise vec4 sum = sin((1.0 - t) * u_slerp.x) * x + sin(t * u_slerp.x) * z;
+    return vec4(dvec4(sum) / double(u_slerp.y));  // correctly rounded, as the CPU's float division
 }
 
 mat3 mat3FromQuat(vec4 q) {
@@ -120,12 +120,16 @@ vec4 clipFromWorld(vec3 p, float t) {
     return vec4(view.x * u_projection.x, view.y * u_projection.y, -view.z - 2.0 * u_projection.z, -view.z);
 }
 
-// NDC of sample texel s (raster rows, top first): the CPU's stratified position, snapped to
-// 1/256 pixel (raster/sample_pattern.cpp).
-dvec2 sampleNdc(ivec2 s) {
+// Fixed-point raster position of sample texel s (raster rows, top first; 1/256 pixel units):
+// the CPU's stratified sample position (raster/sample_pattern.cpp). Whole numbers.
+dvec2 sampleRaster(ivec2 s) {
     int n = u_flags.y;
     ivec2 pixel = s / n, sub = s - pixel * n;
-    dvec2 offset = dvec2(floor((vec2(sub) + 0.5) / float(n) * 256.0));  // exact in float
-    dvec2 raster = dvec2(pixel) + offset / 256.0;
+    return dvec2(pixel) * 256.0 + floor((dvec2(sub) + 0.5) / double(n) * 256.0);
+}
+
+// NDC of sample texel s: sampleRaster in normalized device coordinates.
+dvec2 sampleNdc(ivec2 s) {
+    dvec2 raster = sampleRaster(s) / 256.0;
     return dvec2(2.0 * raster.x / double(u_viewport.z) - 1.0, 1.0 - 2.0 * raster.y / double(u_viewport.w));
 }

@@ -206,8 +206,7 @@ private:
                 for (int a = 0; a < spp; ++a) {
                     const std::size_t i = sampleIndex(px, py, a);
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(frame.viewport.width) + std::uint64_t(px);
-                    const float jitter = unitFloat(hashValues(frame.settings.seed, pixel, std::uint64_t(a), std::uint64_t(j)));
-                    scratch.time[i] = std::min((float(j) + jitter) / float(m_samples), 1.0f);
+                    scratch.time[i] = stratifiedSampleTime(frame.settings.seed, pixel, a, j, m_samples);
                     if (!frame.isCameraStatic) scratch.clipFromWorld[i] = frame.clipFromWorldAt(scratch.time[i]);
                 }
         scratch.nearest.assign(numSamples, NearestHit{});

@@ -11,12 +11,6 @@ flat in uint v_triangle;
 
 #if TRANSLUCENT_PASS
 layout(early_fragment_tests) in;
-struct TranslucentNode {
-    vec4 color;   // rgb, alpha
-    float invW;
-    uint next;
-};
-layout(std430, binding = 7) buffer NodeBuffer { TranslucentNode nodes[]; };
 #else
 layout(location = 0) out vec4 o_color;
 #endif

@@ -1,13 +1,7 @@
-// accumulation-gl: per sample, blends the translucent fragments in front of the opaque surface
-// front to back over it (raster/translucency.cpp) and adds the result to the running sum.
+// Per sample, blends the translucent fragments in front of the opaque surface front to back
+// over it (raster/translucency.cpp) and adds the result to the running sum.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-struct TranslucentNode {
-    vec4 color;
-    float invW;
-    uint next;
-};
-layout(std430, binding = 7) readonly buffer NodeBuffer { TranslucentNode nodes[]; };
 layout(rgba32f, binding = 2) uniform readonly image2D u_opaque;  // rgb, 1/w of the opaque surface (0: none)
 layout(rgba32f, binding = 3) uniform image2D u_sum;
 

@@ -1,0 +1,46 @@
+// stochastic-gl: one corner of a triangle over the stratum [u_stratum.x, u_stratum.y], at the
+// times the CPU's spaceTimeBounds looks at (both ends, the middle, and for piecewise-linear
+// motion the keys between): its raster box, how far its screen path bends from the chord, and
+// whether the triangle needs clipping there. The geometry shader joins the three corners.
+uniform vec2 u_stratum;
+
+out CornerBounds {
+    dvec4 box;              // raster lo.xy, hi.xy
+    double chordDeviation;  // |p(mid) - (p(t0) + p(t1)) / 2| for curved screen paths, else 0
+    int needsClipping;      // 1: near plane or guard band crossed at one of the times
+} corner;
+
+void main() {
+    uint v = triangles[uint(gl_VertexID) / 3u][uint(gl_VertexID) % 3u];
+    uvec4 mesh = meshes[vertexInfo[v].x];
+    uint numKeys = mesh.x;
+    bool isBezier = mesh.y != 0u;
+    float t0 = u_stratum.x, t1 = u_stratum.y;
+    float times[MAX_KEYS + 1];
+    times[0] = t0;
+    times[1] = t1;
+    times[2] = 0.5 * (t0 + t1);
+    int numTimes = 3;
+    if (!isBezier)
+        for (uint k = 1u; k + 1u < numKeys; ++k) {
+            float key = float(double(k) / double(numKeys - 1u));  // keyTime, correctly rounded
+            if (key > t0 && key < t1) times[numTimes++] = key;
+        }
+    dvec2 lo = dvec2(1e300), hi = dvec2(-1e300);
+    dvec2 ends[3];  // at t0, t1 and mid-stratum
+    corner.needsClipping = 0;
+    for (int k = 0; k < numTimes; ++k) {
+        vec4 clip = clipAt(v, times[k]);
+        if (!isInsideClipVolume(clip)) {
+            corner.needsClipping = 1;
+            continue;
+        }
+        dvec2 p = rasterFromClip(clip);
+        lo = min(lo, p);
+        hi = max(hi, p);
+        if (k < 3) ends[k] = p;
+    }
+    corner.box = dvec4(lo, hi);
+    bool isCurved = u_projection.w != 0.0 || (isBezier && numKeys > 2u);
+    corner.chordDeviation = isCurved && corner.needsClipping == 0 ? length(ends[2] - 0.5 * (ends[0] + ends[1])) : 0.0;
+}
