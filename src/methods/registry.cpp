@@ -26,7 +26,7 @@ const std::array kMethods{
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
                createStochasticRenderer},
-    MethodInfo{"motion-path-gl", "motion paths on the GPU (OpenGL 4.5, headless EGL), unfinished: agrees with motion-path only where screen motion is a translation",
+    MethodInfo{"motion-path-gl", "motion paths on the GPU (OpenGL 4.5, headless EGL): paths rasterized into per-sample lists, exact spans, compute resolve",
                createMotionPathGlRenderer},
     MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",
                createAccumulationGlRenderer},

@@ -24,9 +24,15 @@ void main() {
             if (f.invW <= layers[count - 1].invW) continue;
             --count;
         }
-        int i = count++;
-        for (; i > 0 && layers[i - 1].invW < f.invW; --i) layers[i] = layers[i - 1];
-        layers[i] = f;
+        // Swapped down into place, both neighbours read before either is written: llvmpipe
+        // miscompiles the textbook shifting insertion (elements come out duplicated or zero).
+        layers[count] = f;
+        for (int i = count++; i > 0; --i) {
+            TranslucentNode nearer = layers[i - 1], inserted = layers[i];
+            if (!(nearer.invW < inserted.invW)) break;
+            layers[i - 1] = inserted;
+            layers[i] = nearer;
+        }
     }
     if (isOverflowing) atomicAdd(listMethodCounter, 1u);  // samples with more than MAX_LAYERS
     vec3 sum = vec3(0.0);

@@ -93,9 +93,15 @@ void main() {
             if (minDepth(interval) >= minDepth(intervals[n - 1])) continue;
             --n;
         }
-        int i = n++;
-        for (; i > 0 && minDepth(intervals[i - 1]) > minDepth(interval); --i) intervals[i] = intervals[i - 1];
-        intervals[i] = interval;
+        // Swapped down into place, both neighbours read before either is written: llvmpipe
+        // miscompiles the textbook shifting insertion (elements come out duplicated or zero).
+        intervals[n] = interval;
+        for (int i = n++; i > 0; --i) {
+            Interval a = intervals[i - 1], b = intervals[i];
+            if (!(minDepth(a) > minDepth(b))) break;
+            intervals[i - 1] = b;
+            intervals[i] = a;
+        }
     }
     if (isOverflowing) atomicAdd(intervalOverflowSamples, 1u);
     if (n == 0) {
@@ -142,9 +148,9 @@ void main() {
             }
             if (!found) atomicAdd(cycles, 1u);
             if (front != i) {
-                Interval t = intervals[i];
-                intervals[i] = intervals[front];
-                intervals[front] = t;
+                Interval a = intervals[i], b = intervals[front];
+                intervals[i] = b;
+                intervals[front] = a;
             }
         }
     }
@@ -177,15 +183,16 @@ void main() {
             weights[m] = weights[i];
             ++m;
         }
+    // Insertion sort in the same form as the gather's.
     for (int i = 1; i < m; ++i)
-        for (int j = i; j > 0 && (intervals[j].segment < intervals[j - 1].segment ||
-                                  (intervals[j].segment == intervals[j - 1].segment && intervals[j].t0 < intervals[j - 1].t0)); --j) {
-            Interval t = intervals[j];
-            intervals[j] = intervals[j - 1];
-            intervals[j - 1] = t;
-            float w = weights[j];
-            weights[j] = weights[j - 1];
-            weights[j - 1] = w;
+        for (int j = i; j > 0; --j) {
+            Interval a = intervals[j - 1], b = intervals[j];
+            if (!(b.segment < a.segment || (b.segment == a.segment && b.t0 < a.t0))) break;
+            float wa = weights[j - 1], wb = weights[j];
+            intervals[j - 1] = b;
+            intervals[j] = a;
+            weights[j - 1] = wb;
+            weights[j] = wa;
         }
     int shaded = 0;
     for (int i = 0; i < m;) {

@@ -14,9 +14,6 @@ struct HomogeneousSample {
     bool isFrontFacing;
 };
 
-// Spelled out: llvmpipe's double-precision cross() is not to be trusted.
-dvec3 crossD(dvec3 a, dvec3 b) { return dvec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
-
 MovingTriangle movingTriangle(vec4 open[3], vec4 close[3]) {
     MovingTriangle m;
     for (int i = 0; i < 3; ++i) {
@@ -25,9 +22,9 @@ MovingTriangle movingTriangle(vec4 open[3], vec4 close[3]) {
     }
     for (int e = 0; e < 3; ++e) {
         int f = (e + 1) % 3;
-        m.a[e] = crossD(m.delta[e], m.delta[f]);
-        m.b[e] = crossD(m.corner[e], m.delta[f]) + crossD(m.delta[e], m.corner[f]);
-        m.c[e] = crossD(m.corner[e], m.corner[f]);
+        m.a[e] = cross(m.delta[e], m.delta[f]);
+        m.b[e] = cross(m.corner[e], m.delta[f]) + cross(m.delta[e], m.corner[f]);
+        m.c[e] = cross(m.corner[e], m.corner[f]);
     }
     return m;
 }
@@ -39,15 +36,6 @@ dvec3 edgeFunction(MovingTriangle m, int e, dvec2 ndc) {
 }
 
 double quadraticAt(dvec3 q, double u) { return (q.x * u + q.y) * u + q.z; }
-
-// sqrt in double precision from a float estimate and two Newton steps (llvmpipe's double sqrt
-// is not to be trusted).
-double sqrtD(double x) {
-    double r = double(sqrt(float(x)));
-    if (!(r > 0.0)) return sqrt(x);
-    r = 0.5 * (r + x / r);
-    return 0.5 * (r + x / r);
-}
 
 // raster::solveQuadratic: robust real roots, ascending.
 int solveQuadratic(dvec3 q, out double r0, out double r1) {
@@ -66,7 +54,7 @@ int solveQuadratic(dvec3 q, out double r0, out double r1) {
         r0 = -q.y / (2.0 * q.x);
         return 1;
     }
-    double root = sqrtD(discriminant);
+    double root = sqrt(discriminant);
     double s = -0.5 * (q.y + (q.y >= 0.0 ? root : -root));
     r0 = s / q.x;
     r1 = s != 0.0 ? q.z / s : -r0;
@@ -128,11 +116,15 @@ int insideSpans(MovingTriangle m, dvec2 ndc, double zNear, bool checkNearPlane, 
         if (count > 1 && r1 > 0.0 && r1 < 1.0) breaks[n++] = r1;
     }
     breaks[n++] = 1.0;
-    for (int i = 1; i < n; ++i)
-        for (int j = i; j > 0 && breaks[j] < breaks[j - 1]; --j) {
-            double t = breaks[j];
-            breaks[j] = breaks[j - 1];
-            breaks[j - 1] = t;
+    // Sorted by an odd-even transposition network over all 8 slots (unused ones past 1): fixed
+    // indices throughout. llvmpipe miscompiles an insertion sort's swaps of a double array at
+    // variable indices (values come out duplicated).
+    for (int i = n; i < 8; ++i) breaks[i] = 2.0;
+    for (int pass = 0; pass < 8; ++pass)
+        for (int i = pass & 1; i + 1 < 8; i += 2) {
+            double lo = min(breaks[i], breaks[i + 1]), hi = max(breaks[i], breaks[i + 1]);
+            breaks[i] = lo;
+            breaks[i + 1] = hi;
         }
     int count = 0;
     bool wasInside = false;

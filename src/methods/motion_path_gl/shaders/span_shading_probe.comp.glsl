@@ -1,0 +1,18 @@
+// shadeTimeSpan (span_shading.glsl) on a batch of given (triangle, span, point), for the tests
+// that hold the GLSL twin to exposure::shadeTriangleSpan.
+layout(local_size_x = 64) in;
+
+struct ShadingProbe {
+    dvec2 ndc;
+    float t0, t1;
+    uint triangle;
+};
+layout(std430, binding = 10) readonly buffer ShadingProbeBuffer { ShadingProbe probes[]; };
+layout(std430, binding = 11) writeonly buffer ShadingResultBuffer { vec4 shaded[]; };
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= uint(probes.length())) return;
+    ShadingProbe p = probes[i];
+    shaded[i] = shadeTimeSpan(p.triangle, p.t0, p.t1, p.ndc);
+}
