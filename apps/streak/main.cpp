@@ -116,12 +116,14 @@ struct RenderArgs {
     std::optional<int> sort;
     std::optional<int> curveSegments;
     std::optional<int> tapsPerTexel;
+    std::optional<int> gpuMemory;
     std::vector<std::string> options;
     int aa = 1;
     std::string shading = "phong";
     std::optional<std::string> background;
     std::uint64_t seed = 0;
     int threads = 0;
+    int frames = 1;
     std::string stats;
     // glTF scenes only: the shutter in animation frames, the animation, its sampling, the camera.
     std::optional<double> frame;
@@ -182,6 +184,7 @@ int runRender(const RenderArgs& args) {
         throw Error("--width and --height must be in [1, " + std::to_string(raster::kMaxImageSize) + "], got " +
                     std::to_string(args.width) + "x" + std::to_string(args.height));
     if (args.aa < 1 || args.aa > 16) throw Error("--aa must be in [1, 16], got " + std::to_string(args.aa));
+    if (args.frames < 1) throw Error("--frames must be 1 or more, got " + std::to_string(args.frames));
     if (args.threads < 0) throw Error("--threads must be 0 (all cores) or more, got " + std::to_string(args.threads));
     if (args.samples && *args.samples <= 0) throw Error("--samples must be positive, got " + std::to_string(*args.samples));
     RenderSettings settings;
@@ -198,7 +201,7 @@ int runRender(const RenderArgs& args) {
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
         {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}, {"sort", &args.sort},
-        {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}};
+        {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}, {"gpu-memory", &args.gpuMemory}};
     for (const auto& [key, value] : methodFlags)
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
     for (const std::string& option : args.options) {
@@ -234,11 +237,16 @@ int runRender(const RenderArgs& args) {
     stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
     stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
 
-    TerminalProgress progress;
-    RenderContext context{stats, &progress};
+    // Frames before the last warm up what a renderer keeps between frames (GL programs and the
+    // driver's compiled code, caches); the image and stats are the last frame's.
+    stats.setCounter("frames", args.frames);
     Image image;
-    {
-        PhaseTimer timer(stats, "render");
+    for (int frame = 0; frame < args.frames; ++frame) {
+        const bool isLast = frame + 1 == args.frames;
+        RenderStats warmUp;
+        TerminalProgress progress;
+        RenderContext context{isLast ? stats : warmUp, &progress};
+        PhaseTimer timer(context.stats, "render");
         image = renderer->render(scene, settings, context);
     }
     writeImage(image, args.output);
@@ -308,12 +316,16 @@ int run(int argc, char** argv) {
                        "motion-path: texture taps per texel of the footprint's mip level along an interval's uv path (2)");
     render->add_option("--curve-segments", renderArgs.curveSegments,
                        "motion-path: linear segments per key segment for curved screen motion (moving camera, Bezier keys) (4)");
+    render->add_option("--gpu-memory", renderArgs.gpuMemory,
+                       "GL methods: MB the per-sample lists may grow to before the per-sample budget applies (1024)");
     render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
     render->add_option("--threads", renderArgs.threads, "worker threads (0: all cores)")->capture_default_str();
+    render->add_option("--frames", renderArgs.frames, "render the frame this many times; times and counters are the last's (warm: GL programs built)")
+        ->capture_default_str();
     render->add_option("--stats", renderArgs.stats, "write figures of the render (times, counters) as JSON to this file");
     render->add_option("--frame", renderArgs.frame, "glTF: the shutter opens at this animation frame (0)");
     render->add_option("--shutter", renderArgs.shutter, "glTF: frames the shutter stays open (0.5)");

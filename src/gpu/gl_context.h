@@ -23,6 +23,9 @@ public:
     const std::string& renderer() const { return m_renderer; }  ///< GL_RENDERER
     const std::string& version() const { return m_version; }    ///< GL_VERSION
     const std::string& platform() const { return m_platform; }  ///< "device" or "surfaceless"
+    // A rasterizer running on the CPU (Mesa's llvmpipe or softpipe), whose work is deferred to
+    // flushes, so a timestamp marks submission rather than completion.
+    bool isSoftware() const { return m_renderer.find("llvmpipe") != std::string::npos || m_renderer.find("softpipe") != std::string::npos; }
 
 private:
     struct Egl;

@@ -36,7 +36,17 @@ std::string failureLog(GLuint id, GLenum status, GetIv getIv, GetLog getLog) {
 
 }  // namespace
 
-GlProgram buildProgram(std::initializer_list<ShaderStage> stages, const std::map<std::string, std::string>& defines) {
+const GlProgram& buildProgram(std::initializer_list<ShaderStage> stages, const std::map<std::string, std::string>& defines) {
+    // Destroyed before the shared context, which was created before the first program.
+    static std::map<std::string, GlProgram> built;
+    std::string key;
+    for (const ShaderStage& stage : stages) {
+        key += std::to_string(stage.stage) + ":";
+        for (std::string_view file : stage.files) key += std::string(file) + ",";
+    }
+    for (const auto& [name, value] : defines) key += ";" + name + "=" + value;
+    if (const auto found = built.find(key); found != built.end()) return found->second;
+
     GlProgram program;
     std::vector<GlShader> shaders;
     std::string names;
@@ -71,7 +81,7 @@ GlProgram buildProgram(std::initializer_list<ShaderStage> stages, const std::map
     glLinkProgram(program.id());
     if (const std::string log = failureLog(program.id(), GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog); !log.empty())
         throw Error("OpenGL: program " + names + " does not link: " + log);
-    return program;
+    return built.emplace(key, std::move(program)).first->second;
 }
 
 }  // namespace streak::gpu

@@ -23,6 +23,9 @@ struct ShaderStage {
 };
 
 // Compiles and links; Error with the driver's log (first line) and the file names on failure.
-GlProgram buildProgram(std::initializer_list<ShaderStage> stages, const std::map<std::string, std::string>& defines = {});
+// Each distinct program (stages, files, defines) is built once on the shared context and kept
+// for the process: the next frame reuses it, with the driver's compiled code (llvmpipe's JIT of
+// the motion-path resolve takes seconds). Uniforms are the caller's to set before each use.
+const GlProgram& buildProgram(std::initializer_list<ShaderStage> stages, const std::map<std::string, std::string>& defines = {});
 
 }  // namespace streak::gpu

@@ -30,7 +30,7 @@ bool hasTranslucentMaterial(const FlatGeometry& geometry) {
 TranslucentOptions TranslucentOptions::read(OptionMap& options) {
     TranslucentOptions o;
     o.layers = options.getInt("layers", o.layers, 1, 256);
-    o.gpuMemoryMb = options.getInt("gpu-memory", o.gpuMemoryMb, 16, 1 << 20);
+    o.gpuMemoryMb = options.getInt("gpu-memory", o.gpuMemoryMb, 1, 1 << 20);
     return o;
 }
 
@@ -41,7 +41,7 @@ TranslucentResolve::TranslucentResolve(const SampleGrid& grid, const SceneBuffer
       m_lists(grid, kNodeBytes, listCapacity(grid, m_hasTranslucent, options.layers, options.gpuMemoryMb)) {
     std::map<std::string, std::string> defines = buffers.defines();
     defines["MAX_LAYERS"] = std::to_string(options.layers);
-    m_program = buildProgram(
+    m_program = &buildProgram(
         {{GL_COMPUTE_SHADER, {"scene.glsl", "fragment_list.glsl", "translucent_node.glsl", "translucent_resolve.comp.glsl"}}}, defines);
     m_lists.clear();
 }
@@ -51,9 +51,9 @@ void TranslucentResolve::bindForAppending(GLuint program) const { m_lists.bind(p
 void TranslucentResolve::resolve(const GlTexture& opaque, const GlTexture& sum) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
                     GL_ATOMIC_COUNTER_BARRIER_BIT);
-    glUseProgram(m_program.id());
-    m_buffers.bind(m_program.id());
-    m_lists.bind(m_program.id(), kNodeBinding, m_sampleBudget);
+    glUseProgram(m_program->id());
+    m_buffers.bind(m_program->id());
+    m_lists.bind(m_program->id(), kNodeBinding, m_sampleBudget);
     glBindImageTexture(2, opaque.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(3, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glDispatchCompute(GLuint((m_grid.samplesWide() + 7) / 8), GLuint((m_grid.samplesHigh() + 7) / 8), 1);

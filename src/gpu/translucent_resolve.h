@@ -54,7 +54,7 @@ private:
     bool m_hasTranslucent;
     std::uint32_t m_sampleBudget;
     FragmentLists m_lists;
-    GlProgram m_program;
+    const GlProgram* m_program = nullptr;
     std::uint64_t m_overflowSamples = 0, m_listOverflow = 0;
 };
 

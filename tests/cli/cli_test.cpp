@@ -2,6 +2,7 @@
 
 #include "image/color.h"
 #include "image/image_io.h"
+#include "image/metrics.h"
 #include "support/gltf_builder.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
@@ -10,6 +11,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -95,6 +97,21 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_NEAR(linearToSrgb(exr.at(10, 10).x), linearToSrgb(image.at(10, 10).x), 1.0 / 255);
 }
 
+// --frames renders again with the same renderer: the same image, and the stats of the last
+// frame alone (a warm-up frame's counters are not added in).
+TEST(Cli, FramesReportTheLastFrameOnly) {
+    test::TempDir dir;
+    const std::string base = "render builtin:cubes?n=20 -m stochastic --samples 2 --width 64 --height 48 --threads 1 ";
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("one.exr") + " --stats " + dir.file("one.json")).exitCode, 0);
+    ASSERT_EQ(runStreak(dir, base + "--frames 3 -o " + dir.file("three.exr") + " --stats " + dir.file("three.json")).exitCode, 0);
+    EXPECT_TRUE(std::isinf(psnr(readImage(dir.file("one.exr")), readImage(dir.file("three.exr")))));
+    const nlohmann::json one = nlohmann::json::parse(readFile(dir.file("one.json")));
+    const nlohmann::json three = nlohmann::json::parse(readFile(dir.file("three.json")));
+    EXPECT_EQ(three["counters"]["frames"], 3);
+    EXPECT_GT(one["counters"]["triangle_tests"].get<double>(), 0.0);
+    EXPECT_EQ(three["counters"]["triangle_tests"], one["counters"]["triangle_tests"]);
+}
+
 TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
     test::TempDir dir;
     const std::string out = dir.file("out.png");
@@ -150,6 +167,9 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"negative height", "render builtin:crossing --height -5 -o " + out},
         {"zero samples", "render builtin:crossing -m accumulation --samples 0 -o " + out},
         {"option a method does not take", "render builtin:crossing -m motion-path --samples 4 -o " + out},
+        {"gpu memory on a CPU method", "render builtin:crossing -m motion-path --gpu-memory 64 -o " + out},
+        {"zero frames", "render " + ok + "--frames 0 -o " + out},
+        {"zero gpu memory", "render builtin:crossing -m motion-path-gl --gpu-memory 0 -o " + out},
         {"malformed --option", "render builtin:crossing --option tile-cull -o " + out},
         {"bad oracle weights", "render builtin:crossing -m analytic --option oracle-weights=1,2 -o " + out},
         {"negative samples", "render builtin:crossing -m stochastic --samples -3 -o " + out},

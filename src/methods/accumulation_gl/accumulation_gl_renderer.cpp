@@ -27,12 +27,12 @@ public:
         const gpu::SceneBuffers& buffers = frame.buffers;
         std::map<std::string, std::string> defines = buffers.defines();
         defines["TRANSLUCENT_PASS"] = "0";
-        const gpu::GlProgram opaque = gpu::buildProgram(
+        const gpu::GlProgram& opaque = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "accumulation_gl.vert.glsl"}},
              {GL_FRAGMENT_SHADER, {"scene.glsl", "shading.glsl", "accumulation_gl.frag.glsl"}}}, defines);
         defines["TRANSLUCENT_PASS"] = "1";
         defines["LIST_SKIP_HELPERS"] = "1";  // its fragment shader takes derivatives
-        const gpu::GlProgram translucent = gpu::buildProgram(
+        const gpu::GlProgram& translucent = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "accumulation_gl.vert.glsl"}},
              {GL_FRAGMENT_SHADER,
               {"scene.glsl", "shading.glsl", "fragment_list.glsl", "translucent_node.glsl", "accumulation_gl.frag.glsl"}}},
@@ -55,7 +55,7 @@ public:
         const GLsizei numVertices = GLsizei(buffers.numTriangles() * 3);
         gpu::GpuTimer timer;
         {
-            PhaseTimer wall(context.stats, "render");
+            PhaseTimer wall(context.stats, "passes wall");  // with the GPU's wait; the CLI times "render" whole
             timer.begin("passes");
             for (int s = 0; s < m_options.samples; ++s) {
                 const float t = (float(s) + 0.5f) / float(m_options.samples);

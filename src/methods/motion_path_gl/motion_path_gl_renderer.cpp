@@ -57,12 +57,12 @@ public:
         }
         std::map<std::string, std::string> defines = buffers->defines();
         defines["MAX_INTERVALS"] = std::to_string(m_options.maxIntervals);
-        const gpu::GlProgram paths = gpu::buildProgram(
+        const gpu::GlProgram& paths = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "motion_path_gl.vert.glsl"}},
              {GL_GEOMETRY_SHADER, {"scene.glsl", "motion_path_gl.geom.glsl"}},
              {GL_FRAGMENT_SHADER, {"scene.glsl", "fragment_list.glsl", "moving_triangle.glsl", "motion_path_gl.frag.glsl"}}},
             defines);
-        const gpu::GlProgram resolve = gpu::buildProgram(
+        const gpu::GlProgram& resolve = gpu::buildProgram(
             {{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "fragment_list.glsl", "moving_triangle.glsl", "depth_time.glsl",
                                   "span_shading.glsl", "motion_path_gl_resolve.comp.glsl"}}},
             defines);
@@ -88,7 +88,7 @@ public:
         gpu::GpuTimer timer;
         int renders = 0;
         {
-            PhaseTimer wall(context.stats, "render");
+            PhaseTimer wall(context.stats, "passes wall");  // with the GPU's wait; the CLI times "render" whole
             glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
             glViewport(0, 0, grid.samplesWide(), grid.samplesHigh());
             glBindVertexArray(vertexArray.id());

@@ -24,7 +24,7 @@ struct Options {
 };
 
 // The stochastic-gl program of one pass: bounds per corner, a quad per triangle, the test per sample.
-gpu::GlProgram buildPassProgram(std::map<std::string, std::string> defines, bool isTranslucentPass) {
+const gpu::GlProgram& buildPassProgram(std::map<std::string, std::string> defines, bool isTranslucentPass) {
     defines["TRANSLUCENT_PASS"] = isTranslucentPass ? "1" : "0";
     return gpu::buildProgram({{GL_VERTEX_SHADER, {"scene.glsl", "raster.glsl", "stochastic_gl_clip.glsl", "stochastic_gl.vert.glsl"}},
                               {GL_GEOMETRY_SHADER, {"scene.glsl", "shading.glsl", "stochastic_gl.geom.glsl"}},
@@ -56,8 +56,8 @@ public:
         const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.shading, context.stats);
         const gpu::SampleGrid& grid = frame.grid;
         const gpu::SceneBuffers& buffers = frame.buffers;
-        const gpu::GlProgram opaque = buildPassProgram(buffers.defines(), false);
-        const gpu::GlProgram translucent = buildPassProgram(buffers.defines(), true);
+        const gpu::GlProgram& opaque = buildPassProgram(buffers.defines(), false);
+        const gpu::GlProgram& translucent = buildPassProgram(buffers.defines(), true);
         gpu::TranslucentResolve translucency(grid, buffers, frame.geometry, m_options.translucent);
 
         const gpu::SampleFramebuffer opaqueTarget(grid);  // rgb and 1/w of the nearest opaque hit, its depth
@@ -93,7 +93,7 @@ public:
         std::vector<float> times;
         gpu::GpuTimer timer;
         {
-            PhaseTimer wall(context.stats, "render");
+            PhaseTimer wall(context.stats, "passes wall");  // with the GPU's wait; the CLI times "render" whole
             for (int j = 0; j < m_options.samples; ++j) {
                 {
                     PhaseTimer timesTimer(context.stats, "sample times");

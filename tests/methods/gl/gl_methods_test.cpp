@@ -116,5 +116,22 @@ TEST(MotionPathGl, RendersAgainWhenTheListBufferOverflows) {
     EXPECT_GE(psnr(image, cpu), 45.0);
 }
 
+// Past the memory cap the buffer stays at the cap and a per-sample budget that it always holds
+// applies: refused spans are counted, nothing is written out of bounds, and the image is
+// still close to the CPU's (the budget drops the spans past each sample's first few).
+TEST(MotionPathGl, PastTheMemoryCapAppliesAPerSampleBudgetAndCountsTheOverflow) {
+    const Scene scene = builtin("fence", test::withOption("travel", "3"));
+    RenderStats stats;
+    const Image capped = test::render("motion-path-gl", scene, 128, 96, test::withOption("gpu-memory", "1"), &stats);
+    const Image cpu = test::render("motion-path", scene, 128, 96, OptionMap());
+    const double capNodes = double(1 << 20) / 24.0;
+    EXPECT_LE(stats.counter("list_capacity_nodes"), capNodes);
+    EXPECT_LT(stats.counter("sample_budget"), 150.0);
+    EXPECT_LE(stats.counter("sample_budget") * 128 * 96, capNodes);
+    EXPECT_GT(stats.counter("fragment_overflow_spans"), 0.0);
+    EXPECT_GE(psnr(capped, cpu), 25.0);
+    EXPECT_LT(psnr(capped, cpu), 45.0);
+}
+
 }  // namespace
 }  // namespace streak

@@ -33,7 +33,7 @@ static_assert(sizeof(SpanProbeResult) == 72);
 
 std::vector<SpanProbeResult> runProbes(const std::vector<SpanProbe>& probes) {
     gpu::sharedContext();
-    const gpu::GlProgram program = gpu::buildProgram({{GL_COMPUTE_SHADER, {"moving_triangle.glsl", "inside_spans_probe.comp.glsl"}}});
+    const gpu::GlProgram& program = gpu::buildProgram({{GL_COMPUTE_SHADER, {"moving_triangle.glsl", "inside_spans_probe.comp.glsl"}}});
     const gpu::GlBuffer input = gpu::GlBuffer::from(probes);
     const gpu::GlBuffer output(probes.size() * sizeof(SpanProbeResult));
     input.bindStorage(0);

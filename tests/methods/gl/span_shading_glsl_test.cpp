@@ -61,7 +61,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     RenderStats stats;
     const gpu::GpuFrame frame(scene, width, height, 1, shading, stats);
     std::map<std::string, std::string> defines = frame.buffers.defines();
-    const gpu::GlProgram program = gpu::buildProgram(
+    const gpu::GlProgram& program = gpu::buildProgram(
         {{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "moving_triangle.glsl", "span_shading.glsl", "span_shading_probe.comp.glsl"}}},
         defines);
     glUseProgram(program.id());

@@ -183,7 +183,7 @@ TEST(StochasticGl, GeometryThroughTheNearPlaneAndGuardBandAgreesWithStochastic) 
 }
 
 TEST(StochasticGl, RejectsBadOptions) {
-    for (const auto& [key, value] : {std::pair{"samples", "0"}, {"gpu-memory", "1"}, {"layers", "1000"}, {"no-such-option", "1"}}) {
+    for (const auto& [key, value] : {std::pair{"samples", "0"}, {"gpu-memory", "0"}, {"layers", "1000"}, {"no-such-option", "1"}}) {
         OptionMap options;
         options.set(key, value);
         EXPECT_THROW(createRenderer("stochastic-gl", options), Error) << key;
