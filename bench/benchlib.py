@@ -40,6 +40,36 @@ class Streak:
         return float(re.search(r"PSNR: (\S+) dB", out).group(1))
 
 
+LADDER = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 768, 1024, 1536, 2048]
+
+
+def equal_quality_count(streak, scene, method, ref, target, ladder=LADDER, size="256x192", args=()):
+    """The smallest --samples of `method` whose PSNR against `ref` reaches `target`: a ladder
+    first (PSNR is not quite monotonic in the count: stratified times can line up with the
+    motion), then bisection between the last rung below and the first above. Returns (count,
+    its PSNR, the image path), or (None, best PSNR, path) when the top rung falls short."""
+    out = os.path.join(streak.tmp, method + "-equal.exr")
+    cache = {}
+
+    def psnr_at(n):
+        if n not in cache:
+            streak.render(scene, method, out, size=size, args=["--samples", str(n), *args], repeats=1)
+            cache[n] = streak.psnr(ref, out)
+        return cache[n]
+
+    hi = next((r for r in ladder if psnr_at(r) >= target), None)
+    if hi is None:
+        return None, psnr_at(ladder[-1]), out
+    lo = ladder[max(0, ladder.index(hi) - 1)]
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if psnr_at(mid) >= target:
+            hi = mid
+        else:
+            lo = mid
+    return hi, psnr_at(hi), out
+
+
 def machine():
     cpu = "unknown CPU"
     if os.path.exists("/proc/cpuinfo"):

@@ -21,7 +21,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import SCENES, machine, run_sections  # noqa: E402
+from benchlib import LADDER, SCENES, equal_quality_count, machine, run_sections  # noqa: E402
 
 
 def quality(streak):
@@ -34,31 +34,11 @@ def quality(streak):
         out = os.path.join(streak.tmp, "mp.exr")
         mp_ms, _ = streak.render(scene, "motion-path", out)
         target = streak.psnr(ref, out)
-        # Smallest sample count whose PSNR reaches motion-path's (bisection; PSNR grows with it).
-        acc = os.path.join(streak.tmp, "acc.exr")
-        cache = {}
-
-        def acc_psnr(n):
-            if n not in cache:
-                streak.render(scene, "accumulation", acc, args=["--samples", str(n)], repeats=1)
-                cache[n] = streak.psnr(ref, acc)
-            return cache[n]
-
-        # A ladder first (PSNR is not quite monotonic in the count: stratified times can line up
-        # with the motion), then bisection between the last rung below and the first above.
-        ladder = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 768, 1024, 1536, 2048]
-        hi = next((r for r in ladder if acc_psnr(r) >= target), ladder[-1])
-        lo = ladder[max(0, ladder.index(hi) - 1)]
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if acc_psnr(mid) >= target:
-                hi = mid
-            else:
-                lo = mid
-        n = hi
+        n, n_psnr, acc = equal_quality_count(streak, scene, "accumulation", ref, target)
+        n = n or LADDER[-1]
         acc_ms, _ = streak.render(scene, "accumulation", acc, args=["--samples", str(n)])
         mp_ms = min(mp_ms, streak.render(scene, "motion-path", out)[0])
-        print(f"| {name} | {target:.1f} dB | {mp_ms:.1f} | {n} ({acc_psnr(n):.1f} dB) | {acc_ms:.1f} | {acc_ms / mp_ms:.1f} |",
+        print(f"| {name} | {target:.1f} dB | {mp_ms:.1f} | {n} ({n_psnr:.1f} dB) | {acc_ms:.1f} | {acc_ms / mp_ms:.1f} |",
               flush=True)
     print()
 
