@@ -54,6 +54,7 @@ public:
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
 
 private:
+    bool isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const;
     static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
     glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }
     glm::dvec3 edgeVector(int e, double u) const { return (m_a[e] * u + m_b[e]) * u + m_c[e]; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace streak::raster {
 
@@ -55,6 +56,14 @@ bool setupScreenTriangle(const std::array<glm::vec4, 3>& clip, const Viewport& v
     out.bounds.x1 = int(std::min<std::int64_t>(viewport.width - 1, maxX >> kSubpixelBits));
     out.bounds.y1 = int(std::min<std::int64_t>(viewport.height - 1, maxY >> kSubpixelBits));
     return true;
+}
+
+void makeConservative(ScreenTriangle& tri, const Viewport& viewport) {
+    // Snapping moves each corner by at most half a fixed-point unit per axis, so each edge line
+    // by at most sqrt(2)/2 units; a margin of |a| + |b| moves it out by at least one unit.
+    for (int i = 0; i < 3; ++i) tri.bias[i] = std::abs(tri.a[i]) + std::abs(tri.b[i]);
+    tri.bounds.x0 = std::max(0, tri.bounds.x0 - 1), tri.bounds.y0 = std::max(0, tri.bounds.y0 - 1);
+    tri.bounds.x1 = std::min(viewport.width - 1, tri.bounds.x1 + 1), tri.bounds.y1 = std::min(viewport.height - 1, tri.bounds.y1 + 1);
 }
 
 }  // namespace streak::raster

@@ -53,14 +53,21 @@ struct ScreenTriangle {
     // Barycentrics at a point given its edge values (any point of the plane, inside or not).
     // invW <= 0 means the point lies beyond the triangle's horizon.
     PerspectiveSample interpolate(const EdgeValues& e) const;
-    // The same one pixel to the right and one pixel down: texture footprints.
-    PerspectiveSample interpolateRight(const EdgeValues& e) const {
-        return interpolate({e[0] + a[0] * kSubpixelScale, e[1] + a[1] * kSubpixelScale, e[2] + a[2] * kSubpixelScale});
+    // The same `step` fixed-point units to the right and down: texture footprints.
+    PerspectiveSample interpolateRight(const EdgeValues& e, std::int64_t step) const {
+        return interpolate({e[0] + a[0] * step, e[1] + a[1] * step, e[2] + a[2] * step});
     }
-    PerspectiveSample interpolateDown(const EdgeValues& e) const {
-        return interpolate({e[0] + b[0] * kSubpixelScale, e[1] + b[1] * kSubpixelScale, e[2] + b[2] * kSubpixelScale});
+    PerspectiveSample interpolateDown(const EdgeValues& e, std::int64_t step) const {
+        return interpolate({e[0] + b[0] * step, e[1] + b[1] * step, e[2] + b[2] * step});
     }
 };
+
+// Widens a set-up triangle into a conservative cover: every sample within 1/256 pixel of the
+// triangle's unsnapped edges is covered, boundaries included (no fill rule). For regions that
+// must contain every sample an exact test may find inside (motion paths): with the fill rule, a
+// sample on an edge two path faces share, or between a snapped and an exact edge, belongs to
+// neither.
+void makeConservative(ScreenTriangle& tri, const Viewport& viewport);
 
 // Raster position of a clip-space point (x right, y down, in pixels). Precondition: w > 0.
 glm::dvec2 rasterFromClip(const glm::vec4& clip, const Viewport& viewport);

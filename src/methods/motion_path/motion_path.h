@@ -40,6 +40,10 @@ struct MotionPath {
     int count = 0;
 };
 
+// The near plane to rasterize path faces with: below their w = 1, so none is cut, whatever
+// the camera's own near plane.
+constexpr float kProjectedFaceNear = 0.5f;
+
 // Builds the motion path of the triangle with clip-space corners `open` at the segment's start
 // and `close` at its end. A triangle with identical corners at both ends gives one Static face.
 // Faces are emitted projected, at w = 1: they only say which samples a path may cover, so the

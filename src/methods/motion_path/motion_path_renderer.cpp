@@ -164,11 +164,12 @@ private:
     struct Frame {
         Frame(const Scene& scene, const RenderSettings& settings, const Options& options)
             : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
-              pattern(raster::SamplePattern::stratified(settings.aa)),
+              pattern(raster::samplePatternFor(settings.aa, settings.isGridPattern)),
               segmented(scene, float(settings.width) / float(settings.height), options.curveSegments),
               geometry(segmented.flat()), paths(segmented.segments()) {
             spanShading.maxTextureTaps = options.textureSamples;
             spanShading.tapsPerTexel = options.tapsPerTexel;
+            spanShading.samplesPerAxis = settings.aa;
         }
 
         // Paths are binned by their screen boxes and built into faces tile by tile, so memory
@@ -269,13 +270,18 @@ private:
             motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
             counters.pathFaces += scratch.path.count;
             for (int f = 0; f < scratch.path.count; ++f) {
-                raster::setupTriangle(scratch.path.faces[f].clip, index, frame.scene.camera.zNear, frame.viewport, raster::CullMode::None,
-                                      scratch.setup);
-                for (int k = 0; k < scratch.setup.count; ++k)
-                    raster::scanTriangle(scratch.setup.triangles[k].screen, rect, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
+                // Faces come projected, at w = 1: the camera's near plane (which may lie beyond
+                // w = 1 in a large scene) must not cut them.
+                raster::setupTriangle(scratch.path.faces[f].clip, index, motion_path::kProjectedFaceNear, frame.viewport,
+                                      raster::CullMode::None, scratch.setup);
+                for (int k = 0; k < scratch.setup.count; ++k) {
+                    raster::ScreenTriangle& face = scratch.setup.triangles[k].screen;
+                    raster::makeConservative(face, frame.viewport);
+                    raster::scanTriangle(face, rect, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
                         const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
                         scratch.fragments.push_back({sample, index, segment.nearness});
                     });
+                }
             }
         }
         counters.fragments += std::int64_t(scratch.fragments.size());
