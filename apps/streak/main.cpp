@@ -119,6 +119,7 @@ struct RenderArgs {
     std::optional<int> gpuMemory;
     std::vector<std::string> options;
     int aa = 1;
+    bool sampleGrid = false;
     std::string shading = "phong";
     std::optional<std::string> background;
     std::uint64_t seed = 0;
@@ -131,6 +132,7 @@ struct RenderArgs {
     std::optional<double> fps;
     std::optional<std::string> animation;
     std::optional<int> motionKeys;
+    std::optional<double> keyTolerance;
     std::optional<int> camera;
     std::optional<std::string> cameraPos;
     std::optional<std::string> cameraTarget;
@@ -146,7 +148,8 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     const bool isGltf = isGltfSpec(args.scene);
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
-        {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()}, {"--camera", args.camera.has_value()},
+        {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
+        {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
         {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
@@ -158,6 +161,9 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     options.fps = args.fps.value_or(options.fps);
     options.animation = args.animation.value_or("");
     options.motionKeys = args.motionKeys.value_or(options.motionKeys);
+    if (args.motionKeys && *args.motionKeys == 0) throw Error("--motion-keys must be in [2, 256], got 0");
+    options.keyTolerancePixels = args.keyTolerance.value_or(options.keyTolerancePixels);
+    options.imageHeight = args.height;
     options.camera = args.camera;
     options.aspect = float(args.width) / float(args.height);
     const bool hasLookAtFlag = args.cameraUp || args.cameraPosEnd || args.cameraTargetEnd || args.fov;
@@ -191,6 +197,7 @@ int runRender(const RenderArgs& args) {
     settings.width = args.width;
     settings.height = args.height;
     settings.aa = args.aa;
+    settings.isGridPattern = args.sampleGrid;
     settings.seed = args.seed;
     if (args.shading == "phong") settings.shading = ShadingMode::Phong;
     else if (args.shading == "unlit") settings.shading = ShadingMode::Unlit;
@@ -232,6 +239,7 @@ int runRender(const RenderArgs& args) {
     stats.setCounter("width", args.width);
     stats.setCounter("height", args.height);
     stats.setCounter("aa", args.aa);
+    stats.setCounter("sample_grid", args.sampleGrid ? 1 : 0);
     stats.setCounter("triangles", double(scene.numTriangles()));
     stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
     stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
@@ -319,7 +327,8 @@ int run(int argc, char** argv) {
     render->add_option("--gpu-memory", renderArgs.gpuMemory,
                        "GL methods: MB the per-sample lists may grow to before the per-sample budget applies (1024)");
     render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");
-    render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples, box filter")->capture_default_str();
+    render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples (n-rooks: each its own row and column), box filter")->capture_default_str();
+    render->add_flag("--sample-grid", renderArgs.sampleGrid, "place the --aa samples on the regular N x N grid instead of n-rooks");
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
@@ -331,7 +340,9 @@ int run(int argc, char** argv) {
     render->add_option("--shutter", renderArgs.shutter, "glTF: frames the shutter stays open (0.5)");
     render->add_option("--fps", renderArgs.fps, "glTF: frames per second of animation time (24)");
     render->add_option("--animation", renderArgs.animation, "glTF: animation name or index (the first)");
-    render->add_option("--motion-keys", renderArgs.motionKeys, "glTF: key poses sampled over the shutter, more for curved motion (2)");
+    render->add_option("--motion-keys", renderArgs.motionKeys,
+                       "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
+    render->add_option("--key-tolerance", renderArgs.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");
     render->add_option("--camera", renderArgs.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
     render->add_option("--camera-pos", renderArgs.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");
     render->add_option("--camera-target", renderArgs.cameraTarget, "glTF: explicit camera target x,y,z");

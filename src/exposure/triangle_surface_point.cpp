@@ -27,9 +27,12 @@ void MovingTriangleCache::clear() {
     m_triangles.clear();
 }
 
-TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle,
-                                           const glm::dvec2& ndc, MovingTriangleCache& cache)
-    : m_geometry(geometry), m_pixel(2.0 / viewport.width, 2.0 / viewport.height), m_triangle(triangle), m_ndc(ndc),
+TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis,
+                                           std::uint32_t triangle, const glm::dvec2& ndc, MovingTriangleCache& cache)
+    : m_geometry(geometry),
+      m_step(2.0 / (double(viewport.width) * samplesPerAxis), 2.0 / (double(viewport.height) * samplesPerAxis)),
+      m_triangle(triangle),
+      m_ndc(ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])), m_cache(cache) {}
 
 const TriangleSegment& TriangleSurfacePoint::select(float t) const {
@@ -57,7 +60,7 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     glm::dvec3 right, down;
     if (withFootprint) {
         std::array<raster::HomogeneousSample, 2> n;
-        m_moving->sampleWithNeighbours<2>(u, m_ndc, {glm::dvec2(m_pixel.x, 0.0), glm::dvec2(0.0, -m_pixel.y)}, s, n);
+        m_moving->sampleWithNeighbours<2>(u, m_ndc, {glm::dvec2(m_step.x, 0.0), glm::dvec2(0.0, -m_step.y)}, s, n);
         if (!s.isValid) return false;
         // Past the horizon the neighbours say nothing about the footprint.
         const bool isUseful = n[0].isValid && n[1].isValid && n[0].viewDepth > 0.0 && n[1].viewDepth > 0.0;
@@ -90,7 +93,7 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
                               const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
                               MovingTriangleCache& cache) {
-    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, triangle, ndc, cache), settings);
+    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, settings.samplesPerAxis, triangle, ndc, cache), settings);
 }
 
 }  // namespace streak::exposure

@@ -33,8 +33,9 @@ private:
 // segment last used is kept, since taps come in time order.
 class TriangleSurfacePoint final : public MovingSurfacePoint {
 public:
-    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, std::uint32_t triangle, const glm::dvec2& ndc,
-                         MovingTriangleCache& cache);
+    // samplesPerAxis: the --aa N whose sample spacing is the texture footprint.
+    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis, std::uint32_t triangle,
+                         const glm::dvec2& ndc, MovingTriangleCache& cache);
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
@@ -43,7 +44,7 @@ private:
     const TriangleSegment& select(float t) const;
 
     const SegmentedGeometry& m_geometry;
-    glm::dvec2 m_pixel;  ///< one pixel in NDC
+    glm::dvec2 m_step;  ///< one sample spacing in NDC
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

@@ -6,15 +6,15 @@ namespace streak::gpu {
 
 namespace {
 
-SceneBuffers upload(const FlatGeometry& geometry, int width, int height, int aa, ShadingMode shading, RenderStats& stats) {
+SceneBuffers upload(const FlatGeometry& geometry, int width, int height, int aa, bool isGridPattern, ShadingMode shading, RenderStats& stats) {
     PhaseTimer timer(stats, "upload");
-    return SceneBuffers(geometry, width, height, aa, shading);
+    return SceneBuffers(geometry, width, height, aa, isGridPattern, shading);
 }
 
 }  // namespace
 
-GpuFrame::GpuFrame(const Scene& scene, int width, int height, int aa, ShadingMode shading, RenderStats& stats)
-    : gl(sharedContext()), geometry(scene), grid{width, height, aa}, buffers(upload(geometry, width, height, aa, shading, stats)) {
+GpuFrame::GpuFrame(const Scene& scene, int width, int height, int aa, bool isGridPattern, ShadingMode shading, RenderStats& stats)
+    : gl(sharedContext()), geometry(scene), grid{width, height, aa}, buffers(upload(geometry, width, height, aa, isGridPattern, shading, stats)) {
     stats.setInfo("gl_renderer", gl.renderer());
     stats.setInfo("gl_version", gl.version());
 }

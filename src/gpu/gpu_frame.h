@@ -14,7 +14,7 @@ namespace streak::gpu {
 // this thread; the scene flattened and uploaded (the "upload" phase); the grid of sample
 // texels; and the GL renderer and version in the stats.
 struct GpuFrame {
-    GpuFrame(const Scene& scene, int width, int height, int aa, ShadingMode shading, RenderStats& stats);
+    GpuFrame(const Scene& scene, int width, int height, int aa, bool isGridPattern, ShadingMode shading, RenderStats& stats);
 
     GlContext& gl;
     FlatGeometry geometry;

@@ -37,7 +37,7 @@ glm::vec4 quaternion(const glm::quat& q) { return {q.x, q.y, q.z, q.w}; }
 
 }  // namespace
 
-SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, int aa, ShadingMode shading) {
+SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, int aa, bool isGridPattern, ShadingMode shading) {
     const Scene& scene = geometry.scene();
     GLint stageUnits = 0, computeUnits = 0;
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &stageUnits);
@@ -104,7 +104,7 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
     block.ambient = glm::vec4(scene.light.ambient, 0.0f);
     block.background = glm::vec4(scene.background, 1.0f);
     block.viewport = glm::ivec4(width * aa, height * aa, width, height);
-    block.flags = glm::ivec4(shading == ShadingMode::Phong ? 1 : 0, aa, 0, 0);
+    block.flags = glm::ivec4(shading == ShadingMode::Phong ? 1 : 0, aa, isGridPattern ? 1 : 0, 0);
     m_uniforms = GlBuffer(sizeof block, &block, 0);
 
     for (const Texture& texture : scene.textures) {

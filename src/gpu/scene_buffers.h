@@ -20,7 +20,7 @@ class SceneBuffers {
 public:
     // samplesWide x samplesHigh: the grid of sample positions the shaders address (the image
     // times the --aa grid N).
-    SceneBuffers(const FlatGeometry& geometry, int width, int height, int aa, ShadingMode shading);
+    SceneBuffers(const FlatGeometry& geometry, int width, int height, int aa, bool isGridPattern, ShadingMode shading);
 
     // Binds the buffers (SSBO 0-6), the uniform block (0) and the textures (units 0..) for a
     // program built with defines(); sets its u_textures.

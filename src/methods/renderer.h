@@ -15,7 +15,8 @@ namespace streak {
 struct RenderSettings {
     int width = 1024;                          ///< pixels
     int height = 768;                          ///< pixels
-    int aa = 1;                                ///< N: N x N stratified sub-pixel positions, box filter
+    int aa = 1;                                ///< N: N x N sub-pixel samples, box filter
+    bool isGridPattern = false;                ///< the N x N grid of cell centres instead of n-rooks (raster::SamplePattern)
     ShadingMode shading = ShadingMode::Phong;
     std::uint64_t seed = 0;                    ///< for methods that sample randomly
 };

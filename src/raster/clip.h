@@ -38,8 +38,8 @@ ClippedPolygon clipTriangle(const std::array<glm::vec4, 3>& clip, float zNear);
 
 enum class CullMode : std::uint8_t { None, Back };
 
-// Source-triangle barycentrics at a sample and one pixel right and down of it: the texture
-// footprint. Past the triangle's horizon a neighbour has no barycentrics; it then takes the
+// Source-triangle barycentrics at a sample and one sample spacing right and down of it: the
+// texture footprint. Past the triangle's horizon a neighbour has no barycentrics; it then takes the
 // sample's own (a zero footprint).
 struct SourceFootprint {
     glm::vec3 bary{0.0f};
@@ -55,10 +55,11 @@ struct RasterTriangle {
     std::uint32_t source = 0;         ///< the caller's index of the source triangle
 
     glm::vec3 sourceBary(const glm::vec3& localBary) const { return isClipped ? sourceFromLocal * localBary : localBary; }
-    SourceFootprint sourceFootprint(const EdgeValues& e) const {
+    // step: the sample spacing in fixed-point units (SamplePattern::footprintStep).
+    SourceFootprint sourceFootprint(const EdgeValues& e, std::int64_t step) const {
         SourceFootprint f;
         f.bary = sourceBary(screen.interpolate(e).bary);
-        const PerspectiveSample right = screen.interpolateRight(e), down = screen.interpolateDown(e);
+        const PerspectiveSample right = screen.interpolateRight(e, step), down = screen.interpolateDown(e, step);
         f.right = right.invW > 0.0f ? sourceBary(right.bary) : f.bary;
         f.down = down.invW > 0.0f ? sourceBary(down.bary) : f.bary;
         return f;

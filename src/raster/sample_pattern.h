@@ -2,6 +2,8 @@
 
 #include <glm/vec2.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -13,15 +15,32 @@ constexpr int kSubpixelBits = 8;
 constexpr std::int64_t kSubpixelScale = 1 << kSubpixelBits;
 
 // SamplePattern is the set of sample positions inside every pixel, in fixed-point offsets from
-// the pixel's top-left corner. stratified(n) is an n x n grid of cell centres (n = 1: the pixel
-// centre), the box-filtered anti-aliasing of `--aa n`.
+// the pixel's top-left corner, for the box-filtered anti-aliasing of `--aa n` (n x n samples).
+// rooks(n), the default, puts sample (i, j) of the n x n strata at
+// x = (i n + j + 1/2) / n^2, y = (j n + i + 1/2) / n^2: each stratum still holds one sample,
+// and every sample has its own column and row (n-rooks), so an axis-aligned edge is resolved
+// to 1/n^2 of a pixel instead of 1/n. grid(n) is the n x n grid of cell centres. n = 1 is the
+// pixel centre in both.
 struct SamplePattern {
     std::vector<glm::i64vec2> offsets;  ///< each in [0, kSubpixelScale)
 
-    static SamplePattern stratified(int n);
+    static SamplePattern rooks(int n);
+    static SamplePattern grid(int n);
     int count() const { return int(offsets.size()); }
+    // The spacing of the samples along each axis in fixed-point units (a pixel over n): the
+    // texture footprint of one sample, since the box filter integrates the samples.
+    std::int64_t footprintStep() const { return footprintStepFor(m_samplesPerAxis); }
+    static std::int64_t footprintStepFor(int samplesPerAxis) {
+        return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(samplesPerAxis)));
+    }
     // The NDC position of sample s of pixel (px, py) in a width x height image.
     glm::dvec2 ndcOf(int px, int py, int s, int width, int height) const;
+
+private:
+    int m_samplesPerAxis = 1;
 };
+
+// The positions of --aa n: rooks(n), or grid(n) when isGrid.
+SamplePattern samplePatternFor(int n, bool isGrid);
 
 }  // namespace streak::raster

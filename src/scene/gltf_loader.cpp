@@ -145,12 +145,15 @@ private:
         if (!std::isfinite(o.frame)) throw Error("--frame must be a finite number");
         if (!(o.shutter >= 0.0) || !std::isfinite(o.shutter)) throw Error("--shutter must be 0 or more frames");
         if (!(o.fps > 0.0) || !std::isfinite(o.fps)) throw Error("--fps must be positive");
-        if (o.motionKeys < 2 || o.motionKeys > kMaxMotionKeys)
+        if (o.motionKeys != 0 && (o.motionKeys < 2 || o.motionKeys > kMaxMotionKeys))
             throw Error("--motion-keys must be in [2, " + str(kMaxMotionKeys) + "], got " + str(o.motionKeys));
+        if (!(o.keyTolerancePixels > 0.0) || !std::isfinite(o.keyTolerancePixels)) throw Error("--key-tolerance must be a positive number of pixels");
+        if (o.imageHeight < 1) throw Error("the image height must be positive");
         if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
         if (o.camera && o.lookAt) throw Error("a glTF camera and an explicit camera cannot both be given");
         const double t0 = o.frame / o.fps, t1 = (o.frame + o.shutter) / o.fps;
-        for (int k = 0; k < o.motionKeys; ++k) m_keyTimes.push_back(float(t0 + (t1 - t0) * double(k) / double(o.motionKeys - 1)));
+        const int numKeys = o.motionKeys == 0 ? 2 : o.motionKeys;  // adaptive keys start from two
+        for (int k = 0; k < numKeys; ++k) m_keyTimes.push_back(float(t0 + (t1 - t0) * double(k) / double(numKeys - 1)));
     }
 
     // Nodes with their parents, checking that the hierarchy is a forest and transforms are finite.
@@ -353,6 +356,7 @@ private:
                 if (numVertices > m_options.limits.maxVertexWork / factor || vertexWork + numVertices * factor > m_options.limits.maxVertexWork)
                     throw Error("the scene's vertices times motion keys exceed the limit of " + str(m_options.limits.maxVertexWork));
                 vertexWork += numVertices * factor;
+                m_vertexWorkPerKey += numVertices * (factor / numKeys);
                 if (numTriangles > m_options.limits.maxTriangles)
                     throw Error("the scene has more than " + str(m_options.limits.maxTriangles) + " triangles");
                 Instance instance;
@@ -547,62 +551,141 @@ private:
         return m_textures[key] = std::uint32_t(m_scene.textures.size() - 1);
     }
 
-    // The key poses: every node posed at each key time, every instance deformed into its mesh.
-    // Where an instance's inputs (world matrix, morph weights, joint matrices) equal those of the
-    // key before, its vertices are copied rather than computed again.
+    // The vertices of every instance at one animation time, and what they were computed from.
+    struct PosedInstances {
+        std::vector<std::vector<glm::vec3>> positions, normals;  ///< per instance
+        gltf::NodePoses nodes;
+        std::map<int, std::vector<glm::mat4>> joints;            ///< by skin
+    };
+
+    // Every instance deformed at `time`. Where an instance's inputs (world matrix, morph weights,
+    // joint matrices) equal those of `previous`, its vertices are copied rather than computed.
+    PosedInstances poseAt(float time, const PosedInstances* previous) {
+        PosedInstances out;
+        out.nodes = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, time);
+        for (const Instance& instance : m_instances)
+            if (instance.skin >= 0 && instance.data->geometry.isSkinned() && !out.joints.count(instance.skin))
+                out.joints[instance.skin] = gltf::jointMatrices(skin(instance.skin), out.nodes);
+        out.positions.resize(m_instances.size());
+        out.normals.resize(m_instances.size());
+        for (std::size_t i = 0; i < m_instances.size(); ++i) {
+            const Instance& instance = m_instances[i];
+            const std::size_t n = instance.data->geometry.numVertices(), node = instance.node;
+            const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
+            const bool isUnchanged = previous && out.nodes.worldFromNode[node] == previous->nodes.worldFromNode[node] &&
+                                     out.nodes.weights[node] == previous->nodes.weights[node] &&
+                                     (!isSkinned || out.joints[instance.skin] == previous->joints.at(instance.skin));
+            if (isUnchanged) {
+                out.positions[i] = previous->positions[i];
+                out.normals[i] = previous->normals[i];
+                continue;
+            }
+            out.positions[i].resize(n);
+            if (!instance.data->geometry.normals.empty()) out.normals[i].resize(n);
+            const std::span<const glm::mat4> jointMatrices =
+                isSkinned ? std::span<const glm::mat4>(out.joints[instance.skin]) : std::span<const glm::mat4>();
+            gltf::deformPrimitive(instance.data->geometry, out.nodes.weights[node], out.nodes.worldFromNode[node], jointMatrices,
+                                  out.positions[i], out.normals[i]);
+        }
+        return out;
+    }
+
+    // The largest screen distance, in pixels of an image options.imageHeight tall, between the
+    // animation at the middle of each key segment and the keys' linear interpolation there,
+    // seen through the scene's camera at that time. Camera motion is not counted: every method
+    // follows the camera itself.
+    double keyDeviation(const std::vector<PosedInstances>& keys, const std::vector<PosedInstances>& middles) const {
+        const int numSegments = int(middles.size());
+        const float aspect = m_options.aspect;
+        const double pixelsPerNdc = 0.5 * double(m_options.imageHeight);
+        double worst = 0.0;
+        for (int k = 0; k < numSegments; ++k) {
+            const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
+            for (std::size_t i = 0; i < m_instances.size(); ++i) {
+                const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
+                const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
+                const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
+                for (std::size_t v = 0; v < m.size(); ++v) {
+                    const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
+                    const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
+                    if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
+                    const glm::dvec2 d = glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w) * pixelsPerNdc;
+                    const double pixels = std::hypot(d.x * aspect, d.y);
+                    if (std::isfinite(pixels)) worst = std::max(worst, pixels);
+                }
+            }
+        }
+        return worst;
+    }
+
+    // The key poses: options.motionKeys evenly spaced keys, or, with motionKeys 0, 2, 3, 5, 9...
+    // keys (each level adds the middles of the last, so every coarser key stays a key and the
+    // pieces of exact methods stay exact) until the keys stay within options.keyTolerancePixels
+    // of the animation on screen, or the cap (maxMotionKeys, the vertex-work limit) is reached.
     void sampleKeys() {
-        const int numKeys = int(m_keyTimes.size());
-        for (const Instance& instance : m_instances) {
+        const double t0 = m_options.frame / m_options.fps, t1 = (m_options.frame + m_options.shutter) / m_options.fps;
+        auto timeOf = [&](int k, int numKeys) { return float(t0 + (t1 - t0) * double(k) / double(numKeys - 1)); };
+        std::vector<PosedInstances> keys;
+        for (std::size_t k = 0; k < m_keyTimes.size(); ++k) keys.push_back(poseAt(m_keyTimes[k], keys.empty() ? nullptr : &keys.back()));
+        m_openPoses = keys.front().nodes;
+        m_closePoses = keys.back().nodes;
+        const bool isAdaptive = m_options.motionKeys == 0;
+        double deviation = -1.0;
+        if (isAdaptive && m_options.shutter > 0.0 && !m_instances.empty()) {
+            writeMeshes(keys, t0, t1);
+            placeCamera();  // the deviation is measured through it
+            const std::size_t cap = std::size_t(std::clamp(m_options.maxMotionKeys, 2, kMaxMotionKeys));
+            while (true) {
+                const int numKeys = int(keys.size());
+                if (std::size_t(2 * numKeys - 1) * m_vertexWorkPerKey > m_options.limits.maxVertexWork) break;
+                std::vector<PosedInstances> middles;
+                for (int k = 0; k + 1 < numKeys; ++k) middles.push_back(poseAt(timeOf(2 * k + 1, 2 * numKeys - 1), &keys[std::size_t(k)]));
+                deviation = keyDeviation(keys, middles);
+                if (deviation <= m_options.keyTolerancePixels || std::size_t(2 * numKeys - 1) > cap) break;
+                std::vector<PosedInstances> refined;
+                for (int k = 0; k < numKeys; ++k) {
+                    refined.push_back(std::move(keys[std::size_t(k)]));
+                    if (k + 1 < numKeys) refined.push_back(std::move(middles[std::size_t(k)]));
+                }
+                keys = std::move(refined);
+            }
+        }
+        writeMeshes(keys, t0, t1);
+        if (m_stats) {
+            m_stats->setCounter("motion_keys", double(keys.size()));
+            if (deviation >= 0.0) m_stats->setCounter("motion_key_deviation_px", deviation);
+        }
+    }
+
+    // One streak Mesh per instance from the key poses.
+    void writeMeshes(const std::vector<PosedInstances>& keys, double t0, double t1) {
+        const int numKeys = int(keys.size());
+        m_scene.meshes.clear();
+        // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding clockwise;
+        // flip it back so that front faces stay counter-clockwise. Judged at mid-shutter.
+        const gltf::NodePoses middle = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, float(0.5 * (t0 + t1)));
+        for (std::size_t i = 0; i < m_instances.size(); ++i) {
+            const Instance& instance = m_instances[i];
             const PrimitiveData& data = *instance.data;
             const std::size_t n = data.geometry.numVertices();
             Mesh mesh;
             mesh.name = instance.name;
             mesh.numKeys = numKeys;
             mesh.interpolation = MotionInterpolation::PiecewiseLinear;
-            mesh.positions.resize(n * std::size_t(numKeys));
-            if (!data.geometry.normals.empty()) mesh.normals.resize(n * std::size_t(numKeys));
+            mesh.positions.reserve(n * std::size_t(numKeys));
+            if (!data.geometry.normals.empty()) mesh.normals.reserve(n * std::size_t(numKeys));
+            for (const PosedInstances& key : keys) {
+                mesh.positions.insert(mesh.positions.end(), key.positions[i].begin(), key.positions[i].end());
+                if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i].begin(), key.normals[i].end());
+            }
             mesh.uvs = data.uvs;
             mesh.colors = data.colors;
             mesh.triangles = data.triangles;
             mesh.material = data.material;
+            const bool isSkinned = instance.skin >= 0 && data.geometry.isSkinned();
+            if (!isSkinned && glm::determinant(glm::mat3(middle.worldFromNode[instance.node])) < 0.0f)
+                for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
             m_scene.meshes.push_back(std::move(mesh));
-        }
-        gltf::NodePoses previous;
-        std::map<int, std::vector<glm::mat4>> previousJoints;
-        const int middleKey = (numKeys - 1) / 2;
-        for (int k = 0; k < numKeys; ++k) {
-            gltf::NodePoses poses = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, m_keyTimes[std::size_t(k)]);
-            std::map<int, std::vector<glm::mat4>> joints;
-            for (const Instance& instance : m_instances)
-                if (instance.skin >= 0 && instance.data->geometry.isSkinned() && !joints.count(instance.skin)) joints[instance.skin] = gltf::jointMatrices(skin(instance.skin), poses);
-            if (k == 0) m_openPoses = poses;
-            if (k == numKeys - 1) m_closePoses = poses;
-            for (std::size_t i = 0; i < m_instances.size(); ++i) {
-                const Instance& instance = m_instances[i];
-                Mesh& mesh = m_scene.meshes[i];
-                const std::size_t n = instance.data->geometry.numVertices(), node = instance.node;
-                const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
-                const std::span<const glm::mat4> jointMatrices =
-                    isSkinned ? std::span<const glm::mat4>(joints[instance.skin]) : std::span<const glm::mat4>();
-                const std::span<glm::vec3> positions(mesh.positions.data() + std::size_t(k) * n, n);
-                const std::span<glm::vec3> normals = mesh.hasNormals() ? std::span<glm::vec3>(mesh.normals.data() + std::size_t(k) * n, n)
-                                                                       : std::span<glm::vec3>();
-                const bool isUnchanged = k > 0 && poses.worldFromNode[node] == previous.worldFromNode[node] &&
-                                         poses.weights[node] == previous.weights[node] &&
-                                         (!isSkinned || joints[instance.skin] == previousJoints[instance.skin]);
-                if (isUnchanged) {
-                    std::copy_n(positions.data() - n, n, positions.data());
-                    if (!normals.empty()) std::copy_n(normals.data() - n, n, normals.data());
-                } else {
-                    gltf::deformPrimitive(instance.data->geometry, poses.weights[node], poses.worldFromNode[node], jointMatrices, positions, normals);
-                }
-                // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding
-                // clockwise; flip it back so that front faces stay counter-clockwise.
-                if (k == middleKey && !isSkinned && glm::determinant(glm::mat3(poses.worldFromNode[node])) < 0.0f)
-                    for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
-            }
-            previous = std::move(poses);
-            previousJoints = std::move(joints);
         }
     }
 
@@ -688,7 +771,8 @@ private:
     AccessorReader m_reader;
     gltf::DocumentLimits m_documentLimits;
     Scene m_scene;
-    std::vector<float> m_keyTimes;                                   ///< seconds of animation time
+    std::vector<float> m_keyTimes;                                   ///< seconds of animation time of the first keys
+    std::size_t m_vertexWorkPerKey = 0;                              ///< GltfLimits::maxVertexWork's measure of one key
     std::vector<gltf::Node> m_nodes;
     std::vector<bool> m_isInScene;                                   ///< per node: reachable from the scene's roots
     std::optional<gltf::Animation> m_animation;

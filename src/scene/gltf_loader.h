@@ -42,7 +42,11 @@ struct GltfOptions {
     double shutter = 0.5;       ///< frames it stays open (0: no motion)
     double fps = 24.0;          ///< frames per second
     std::string animation;      ///< a name, or an index; empty: the first animation, if any
-    int motionKeys = 2;         ///< key poses sampled evenly over the shutter, 2 to 256
+    int motionKeys = 0;         ///< key poses sampled evenly over the shutter, 2 to 256; 0: chosen
+                                ///< per scene (2, 3, 5, 9...) to follow the animation on screen
+    double keyTolerancePixels = 0.125;  ///< chosen keys: the screen deviation they may leave
+    int maxMotionKeys = 33;             ///< chosen keys: at most this many
+    int imageHeight = 768;              ///< pixels, the unit of keyTolerancePixels
     std::optional<int> camera;  ///< a glTF camera (index into cameras); default: the first
                                 ///< perspective camera instanced by a node, in node order
     std::optional<GltfLookAt> lookAt;  ///< an explicit camera instead of a glTF one
@@ -52,8 +56,9 @@ struct GltfOptions {
 };
 
 // Loads a .gltf or .glb file into a Scene: one streak Mesh per (node, triangle primitive) of
-// the file's default scene, with options.motionKeys world-space key poses (piecewise linear)
-// sampled from the animation over [frame, frame + shutter] / fps seconds: node hierarchies,
+// the file's default scene, with world-space key poses (piecewise linear; options.motionKeys
+// of them, or as many as the animation needs, reported as motion_keys in stats) sampled from
+// the animation over [frame, frame + shutter] / fps seconds: node hierarchies,
 // skinning and morph targets included. Materials keep base colour, texture, vertex colours,
 // alpha mode and double-sidedness. Points and lines are skipped (counted in stats). The
 // camera is options.lookAt, else a glTF camera (posed at shutter open and close), else one

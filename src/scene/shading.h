@@ -20,8 +20,8 @@ struct SurfacePoint {
     glm::vec3 position{0.0f};  ///< world space
     glm::vec3 normal{0.0f};    ///< world space, any length; geometric normal if the mesh has none
     glm::vec2 uv{0.0f};
-    glm::vec2 duvdx{0.0f};     ///< uv change over one pixel to the right (texture footprint)
-    glm::vec2 duvdy{0.0f};     ///< uv change over one pixel down
+    glm::vec2 duvdx{0.0f};     ///< uv change over one sample spacing to the right (texture footprint)
+    glm::vec2 duvdy{0.0f};     ///< uv change over one sample spacing down
     glm::vec4 vertexColor{1.0f}; ///< interpolated linear vertex colour; multiplies albedo and alpha
     std::uint32_t material = 0;
     bool isFrontFacing = true; ///< back faces of double-sided materials are lit from their side

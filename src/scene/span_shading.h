@@ -31,6 +31,7 @@ struct SpanShadingSettings {
     float tapsPerTexel = 2.0f;     ///< taps per texel of the footprint's mip level along the uv path
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
+    int samplesPerAxis = 1;        ///< --aa N: the texture footprint is one sample spacing, 1/N pixel
 };
 
 // The mean shaded colour (and opacity) of a point over [t0, t1] of the shutter: the colour of

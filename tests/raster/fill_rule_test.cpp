@@ -59,7 +59,7 @@ TEST(FillRule, SharedEdgesCoverEverySampleExactlyOnce) {
             }
         }
     for (int aa : {1, 3, 4}) {
-        const std::vector<int> counts = coverageCounts(vp, SamplePattern::stratified(aa), tris);
+        const std::vector<int> counts = coverageCounts(vp, SamplePattern::grid(aa), tris);
         int wrong = 0;
         for (int c : counts) wrong += c != 1;
         EXPECT_EQ(wrong, 0) << "aa " << aa;
@@ -73,7 +73,7 @@ TEST(FillRule, TopLeftOwnership) {
     std::vector<ScreenTriangle> tris(2);
     ASSERT_TRUE(setupScreenTriangle({clipAt(vp, 2.5f, 2.5f), clipAt(vp, 2.5f, 6.5f), clipAt(vp, 6.5f, 6.5f)}, vp, tris[0]));
     ASSERT_TRUE(setupScreenTriangle({clipAt(vp, 2.5f, 2.5f), clipAt(vp, 6.5f, 6.5f), clipAt(vp, 6.5f, 2.5f)}, vp, tris[1]));
-    const std::vector<int> counts = coverageCounts(vp, SamplePattern::stratified(1), tris);
+    const std::vector<int> counts = coverageCounts(vp, SamplePattern::grid(1), tris);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) EXPECT_EQ(counts[y * 8 + x], (x >= 2 && x < 6 && y >= 2 && y < 6) ? 1 : 0) << x << "," << y;
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
+#include <cstdio>
 #include <cmath>
 #include <numbers>
 
@@ -426,6 +427,58 @@ TEST(GltfModels, ToyCarCameraPoseAndFieldOfView) {
     const Scene other = loadGltf(path, second);
     EXPECT_FLOAT_EQ(other.camera.verticalFov, 0.41f);
     expectNear(other.camera.open.position, {-0.04332856f, 0.0235993266f, 0.0760967f}, 1e-7f);
+}
+
+}  // namespace streak
+
+namespace streak {
+
+TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
+    // A node turning 90 degrees about z over 1 s (LINEAR: constant angular speed), the whole
+    // second in the shutter. Vertex (1, 0, 0) truly sits at (cos 90t, sin 90t, 0); the chosen
+    // piecewise-linear keys must stay within the tolerance of it on screen at every time.
+    test::GltfBuilder b;
+    addTriangle(b);
+    const float s = std::sin(std::numbers::pi_v<float> / 4), c = std::cos(std::numbers::pi_v<float> / 4);
+    const int times = b.addFloats({0, 1}, "SCALAR", 1);
+    const int turns = b.addFloats({0, 0, 0, 1, 0, 0, s, c}, "VEC4", 4);
+    json turn;
+    turn["samplers"] = json::array({{{"input", times}, {"output", turns}}});
+    turn["channels"] = json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}});
+    b.json()["animations"] = json::array({turn});
+    GltfOptions options;
+    options.shutter = 24;
+    options.imageHeight = 240;
+    options.aspect = 4.0f / 3.0f;
+    RenderStats stats;
+    const Scene scene = load(b, options, &stats);
+    const Mesh& mesh = scene.meshes[0];
+    const int keys = mesh.numKeys;
+    EXPECT_EQ(stats.counter("motion_keys"), double(keys));
+    EXPECT_GT(keys, 2);
+    EXPECT_LE(keys, options.maxMotionKeys);
+    EXPECT_EQ((keys - 1) & (keys - 2), 0) << "2^m + 1 keys, so coarser keys stay keys";
+    EXPECT_LE(stats.counter("motion_key_deviation_px"), options.keyTolerancePixels);
+    double worst = 0.0;
+    for (int i = 0; i <= 1000; ++i) {
+        const float t = float(i) / 1000.0f;
+        const glm::mat4 clipFromWorld = scene.camera.clipFromWorld(t, options.aspect);
+        const glm::vec3 keyed = mesh.positionAt(1, mesh.weightsAt(t));
+        const float angle = std::numbers::pi_v<float> / 2 * t;
+        const glm::vec4 a = clipFromWorld * glm::vec4(keyed, 1.0f), b2 = clipFromWorld * glm::vec4(std::cos(angle), std::sin(angle), 0.0f, 1.0f);
+        const glm::vec2 d = (glm::vec2(a) / a.w - glm::vec2(b2) / b2.w) * glm::vec2(0.5f * 240.0f * options.aspect, 0.5f * 240.0f);
+        worst = std::max(worst, double(glm::length(d)));
+    }
+    EXPECT_LE(worst, options.keyTolerancePixels * 1.05);
+    std::printf("%d keys, %.4f px measured, %.4f px by the loader\n", keys, worst, stats.counter("motion_key_deviation_px"));
+
+    // Two keys leave the quarter turn's chord 29% of the radius off; an explicit count wins.
+    options.motionKeys = 2;
+    EXPECT_EQ(load(b, options).meshes[0].numKeys, 2);
+    // A still animation needs no more than two.
+    options.motionKeys = 0;
+    options.shutter = 0;
+    EXPECT_EQ(load(b, options).meshes[0].numKeys, 2);
 }
 
 }  // namespace streak

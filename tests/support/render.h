@@ -13,10 +13,11 @@
 namespace streak::test {
 
 inline Image render(const std::string& method, const Scene& scene, int width, int height, OptionMap options, RenderStats* stats = nullptr,
-                    ShadingMode shading = ShadingMode::Unlit, int aa = 1) {
+                    ShadingMode shading = ShadingMode::Unlit, int aa = 1, bool isGridPattern = false) {
     std::unique_ptr<Renderer> renderer = createRenderer(method, options);
     RenderSettings settings;
     settings.width = width, settings.height = height, settings.shading = shading, settings.aa = aa;
+    settings.isGridPattern = isGridPattern;
     RenderStats local;
     RenderContext context{stats ? *stats : local};
     return renderer->render(scene, settings, context);

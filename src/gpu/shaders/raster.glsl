@@ -11,7 +11,7 @@ const double kSubpixelScale = 256.0;
 // A covered sample: what depth testing and shading need.
 struct RasterHit {
     vec3 bary;       // perspective-correct barycentrics in the source triangle
-    vec3 baryRight;  // the same one pixel right and one pixel down: the texture footprint
+    vec3 baryRight;  // the same one sample spacing right and down: the texture footprint
     vec3 baryDown;
     float invW;      // 1 / view depth: larger is nearer
     bool isFrontFacing;
@@ -145,8 +145,10 @@ bool hitScreenTriangle(vec4 corners[3], mat3 sourceFromLocal, bool cullBack, dve
     vec3 bary, right, down;
     hit.invW = interpolate(tri, e, bary);
     hit.bary = sourceFromLocal * bary;
-    hit.baryRight = interpolate(tri, e + tri.a * kSubpixelScale, right) > 0.0 ? sourceFromLocal * right : hit.bary;
-    hit.baryDown = interpolate(tri, e + tri.b * kSubpixelScale, down) > 0.0 ? sourceFromLocal * down : hit.bary;
+    // SamplePattern::footprintStep: a pixel over --aa N, rounded to fixed point.
+    double step = max(1.0, roundHalfAway(kSubpixelScale / double(u_flags.y)));
+    hit.baryRight = interpolate(tri, e + tri.a * step, right) > 0.0 ? sourceFromLocal * right : hit.bary;
+    hit.baryDown = interpolate(tri, e + tri.b * step, down) > 0.0 ? sourceFromLocal * down : hit.bary;
     hit.isFrontFacing = tri.isFrontFacing;
     return true;
 }

@@ -27,7 +27,7 @@ layout(std140, binding = 0) uniform SceneBlock {
     vec4 u_ambient;
     vec4 u_background;
     ivec4 u_viewport;        // width, height (in samples), pixels wide, pixels high
-    ivec4 u_flags;           // lit (Phong) 1 / unlit 0, sample grid N, unused, unused
+    ivec4 u_flags;           // lit (Phong) 1 / unlit 0, sample grid N, grid pattern 1 / n-rooks 0, unused
 };
 
 uniform sampler2D u_textures[MAX_TEXTURES];
@@ -121,11 +121,14 @@ vec4 clipFromWorld(vec3 p, float t) {
 }
 
 // Fixed-point raster position of sample texel s (raster rows, top first; 1/256 pixel units):
-// the CPU's stratified sample position (raster/sample_pattern.cpp). Whole numbers.
+// the CPU's sample position (raster/sample_pattern.cpp): n-rooks, or the grid's cell centre.
+// Whole numbers. An n-rooks sample stays inside its texel, less than half a texel from its centre.
 dvec2 sampleRaster(ivec2 s) {
     int n = u_flags.y;
     ivec2 pixel = s / n, sub = s - pixel * n;
-    return dvec2(pixel) * 256.0 + floor((dvec2(sub) + 0.5) / double(n) * 256.0);
+    dvec2 offset = u_flags.z != 0 ? floor((dvec2(sub) + 0.5) / double(n) * 256.0)
+                                  : floor((dvec2(sub) * double(n) + dvec2(sub.yx) + 0.5) / double(n * n) * 256.0);
+    return dvec2(pixel) * 256.0 + offset;
 }
 
 // NDC of sample texel s: sampleRaster in normalized device coordinates.

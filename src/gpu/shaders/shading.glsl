@@ -6,7 +6,7 @@ struct SurfacePoint {
     vec3 position;
     vec3 normal;        // any length
     vec2 uv;
-    vec2 duvdx, duvdy;  // uv change one pixel right and down
+    vec2 duvdx, duvdy;  // uv change one sample spacing right and down
     vec4 vertexColor;
     uint material;
     bool isFrontFacing;

@@ -49,7 +49,7 @@ public:
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const FlatGeometry geometry(scene);
         const raster::Viewport viewport{settings.width, settings.height};
-        const raster::SamplePattern pattern = raster::SamplePattern::stratified(settings.aa);
+        const raster::SamplePattern pattern = raster::samplePatternFor(settings.aa, settings.isGridPattern);
         const float aspect = float(settings.width) / float(settings.height);
         raster::TileGrid grid(viewport, kTileSize);
         std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
@@ -126,7 +126,7 @@ private:
         };
         auto shade = [&](const raster::RasterTriangle& rt, const raster::EdgeValues& e) {
             const FlatTriangle& tri = geometry.triangles()[rt.source];
-            const raster::SourceFootprint f = rt.sourceFootprint(e);
+            const raster::SourceFootprint f = rt.sourceFootprint(e, pattern.footprintStep());
             const std::array<glm::vec3, 3> corners{slice.positions[tri.vertices.x], slice.positions[tri.vertices.y],
                                                    slice.positions[tri.vertices.z]};
             const std::array<glm::vec3, 3> normals{slice.normals[tri.vertices.x], slice.normals[tri.vertices.y],

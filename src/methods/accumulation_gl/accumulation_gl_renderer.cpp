@@ -22,7 +22,9 @@ public:
     explicit AccumulationGlRenderer(const Options& options) : m_options(options) {}
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
-        const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.shading, context.stats);
+        // Hardware rasterization puts the samples at the texel centres of the sample grid: the
+        // regular grid, whatever settings.isGridPattern says (counted below).
+        const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, /*isGridPattern=*/true, settings.shading, context.stats);
         const gpu::SampleGrid& grid = frame.grid;
         const gpu::SceneBuffers& buffers = frame.buffers;
         std::map<std::string, std::string> defines = buffers.defines();
@@ -92,6 +94,7 @@ public:
 
         RenderStats& stats = context.stats;
         stats.setCounter("time_samples", m_options.samples);
+        stats.setCounter("samples_on_grid", 1);  // hardware rasterization: texel centres
         translucency.report(stats);
         stats.setCounter("gpu_memory_bytes", double(buffers.uploadBytes() + translucency.bytes() + grid.numSamples() * 16 * 3));
         return image;

@@ -80,12 +80,13 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
-        Frame frame{scene, settings, m_options, viewport, raster::SamplePattern::stratified(settings.aa), {}, {}, {}};
+        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}};
         {
             PhaseTimer timer(context.stats, "setup");
             frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
             frame.spanShading.maxTextureTaps = m_options.textureSamples;
             frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
+            frame.spanShading.samplesPerAxis = settings.aa;
             frame.computeBounds();
         }
         raster::TileGrid grid(viewport, kTileSize);

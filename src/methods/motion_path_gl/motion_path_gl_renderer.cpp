@@ -53,7 +53,7 @@ public:
         std::optional<gpu::SceneBuffers> buffers;
         {
             PhaseTimer timer(context.stats, "upload");
-            buffers.emplace(geometry, settings.width, settings.height, settings.aa, settings.shading);
+            buffers.emplace(geometry, settings.width, settings.height, settings.aa, settings.isGridPattern, settings.shading);
         }
         std::map<std::string, std::string> defines = buffers->defines();
         defines["MAX_INTERVALS"] = std::to_string(m_options.maxIntervals);

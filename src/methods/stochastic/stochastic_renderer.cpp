@@ -84,7 +84,7 @@ private:
     struct Frame {
         Frame(const Scene& scene, const RenderSettings& settings)
             : scene(scene), settings(settings), geometry(scene), viewport{settings.width, settings.height},
-              pattern(raster::SamplePattern::stratified(settings.aa)), aspect(float(settings.width) / float(settings.height)),
+              pattern(raster::samplePatternFor(settings.aa, settings.isGridPattern)), aspect(float(settings.width) / float(settings.height)),
               isCameraStatic(scene.camera.isStatic()) {
             if (!isCameraStatic) return;
             // A static camera makes clip space a fixed linear map of world space, so a vertex's
@@ -173,7 +173,7 @@ private:
         ShadedColor shade(const SampleHit& hit, float t) const {
             const raster::RasterTriangle& rt = *hit.triangle;
             const FlatTriangle& tri = geometry.triangles()[rt.source];
-            const raster::SourceFootprint f = rt.sourceFootprint(hit.edges);
+            const raster::SourceFootprint f = rt.sourceFootprint(hit.edges, pattern.footprintStep());
             const SurfacePoint point = geometry.surfacePoint(tri, geometry.cornersAt(tri, t), geometry.cornerNormalsAt(tri, t), f.bary,
                                                              f.right, f.down, rt.screen.isFrontFacing);
             return shadeSurface(scene, settings.shading, point, scene.camera.positionAt(t));

@@ -53,7 +53,7 @@ public:
     explicit StochasticGlRenderer(const Options& options) : m_options(options) {}
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
-        const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.shading, context.stats);
+        const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.isGridPattern, settings.shading, context.stats);
         const gpu::SampleGrid& grid = frame.grid;
         const gpu::SceneBuffers& buffers = frame.buffers;
         const gpu::GlProgram& opaque = buildPassProgram(buffers.defines(), false);

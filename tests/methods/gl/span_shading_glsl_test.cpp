@@ -38,7 +38,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
 
     // Every inside span of every segment at every pixel centre (up to a budget).
     const exposure::SegmentedGeometry segmented(scene, float(width) / float(height), curveSegments);
-    const raster::SamplePattern pattern = raster::SamplePattern::stratified(1);
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(1);
     std::vector<ShadingProbe> probes;
     for (int y = 0; y < height; y += 2)
         for (int x = 0; x < width; x += 2) {
@@ -59,7 +59,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     if (probes.size() > 20000) probes.resize(20000);
 
     RenderStats stats;
-    const gpu::GpuFrame frame(scene, width, height, 1, shading, stats);
+    const gpu::GpuFrame frame(scene, width, height, 1, false, shading, stats);
     std::map<std::string, std::string> defines = frame.buffers.defines();
     const gpu::GlProgram& program = gpu::buildProgram(
         {{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "moving_triangle.glsl", "span_shading.glsl", "span_shading_probe.comp.glsl"}}},

@@ -34,8 +34,9 @@ void main() {
     }
     p.uv = v_uv;
     // One pixel of the image is u_flags.y sample texels.
-    p.duvdx = dFdxFine(v_uv) * float(u_flags.y);
-    p.duvdy = dFdyFine(v_uv) * float(u_flags.y);
+    // One texel of the sample grid is one sample spacing: the footprint the box filter needs.
+    p.duvdx = dFdxFine(v_uv);
+    p.duvdy = dFdyFine(v_uv);
     p.vertexColor = v_color;
     p.material = m;
     p.isFrontFacing = gl_FrontFacing;

@@ -79,6 +79,26 @@ void main() {
         if (current == start) break;
     }
     if (n < 3) return;  // degenerate: a point or a line covers no sample centre
+    // GL rasterizes at texel centres, but a sample (n-rooks, sampleRaster) lies up to half a
+    // texel from its centre: push each edge out by half a texel diagonal, so every texel whose
+    // sample the hull covers is rasterized. Each corner moves to where its two pushed edges meet.
+    vec2 texel = 2.0 / vec2(u_viewport.xy);
+    vec2 grown[6];
+    for (int i = 0; i < 6; ++i) {
+        if (i >= n) break;
+        vec2 a = hull[(i + n - 1) % n], b = hull[i], c = hull[(i + 1) % n];
+        // Outward normals of a counter-clockwise polygon, scaled so a unit step is one texel.
+        vec2 e0 = (b - a) / texel, e1 = (c - b) / texel;
+        vec2 n0 = normalize(vec2(e0.y, -e0.x)), n1 = normalize(vec2(e1.y, -e1.x));
+        float d = 0.7072;  // half a texel diagonal, a little over
+        vec2 m = n0 + n1;
+        float mm = dot(m, m);
+        // The miter (n0 + n1) 2d / |n0 + n1|^2, its length capped near 45 d for slivers.
+        vec2 push = m * (2.0 * d / max(mm, 1e-3));
+        grown[i] = b + push * texel;
+    }
+    for (int i = 0; i < 6; ++i)
+        if (i < n) hull[i] = grown[i];
     // A convex polygon as a strip: 0, 1, n-1, 2, n-2, ...
     emitCorner(hull[0]);
     for (int i = 1; i < n; ++i) emitCorner(hull[(i & 1) != 0 ? (i + 1) / 2 : n - i / 2]);

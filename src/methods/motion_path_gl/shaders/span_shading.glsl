@@ -64,7 +64,8 @@ bool surfaceAt(inout SpanPoint p, float t, bool withFootprint, out SurfacePoint 
     selectSegment(p, t);
     double u = localTime(p, t);
     HomogeneousSample s, right, down;
-    dvec2 pixel = dvec2(2.0 / double(u_viewport.z), 2.0 / double(u_viewport.w));
+    // One sample spacing in NDC: the texture footprint (u_viewport.xy is the sample grid).
+    dvec2 pixel = dvec2(2.0 / double(u_viewport.x), 2.0 / double(u_viewport.y));
     sampleWithNeighbours(p.moving, u, p.ndc, dvec2(pixel.x, 0.0), dvec2(0.0, -pixel.y), s, right, down);
     if (!s.isValid) return false;
     dvec3 baryRight = s.bary, baryDown = s.bary;

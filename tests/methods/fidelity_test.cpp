@@ -1,0 +1,132 @@
+// Fidelity against closed forms that no streak method computes: edge coverage under --aa N
+// (n-rooks samples) and the box integral of a texture under a pixel (footprint of one sample
+// spacing). Every CPU method is held to them, so a shared mistake cannot hide.
+
+#include "image/metrics.h"
+#include "support/render.h"
+#include "support/test_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace streak {
+
+namespace {
+
+const char* const kMethods[] = {"accumulation", "stochastic", "motion-path", "analytic"};
+
+OptionMap optionsFor(const std::string& method) {
+    return method == "accumulation" || method == "stochastic" ? test::withOption("samples", "1") : OptionMap();
+}
+
+// A static white quad over the left of a 4x4 image whose right edge sits `fraction` of a pixel
+// into column 2.
+Scene edgeScene(float fraction) {
+    Scene scene = test::emptyScene();
+    const test::PixelCamera cam{4, 4, 2.0f};
+    test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(1.0f)), -1.0f, -1.0f, 2.0f + fraction, 5.0f);
+    validateScene(scene);
+    return scene;
+}
+
+}  // namespace
+
+class EdgeCoverage : public ::testing::TestWithParam<const char*> {};
+
+// An axis-aligned edge a fraction f into a pixel covers f of it, to within one sample in N^2
+// with n-rooks (every sample in its own column); the grid quantises it to 1/N and gives 0 for
+// f = 3% at N = 8.
+TEST_P(EdgeCoverage, AxisAlignedEdgeCoversItsFraction) {
+    const std::string method = GetParam();
+    for (int n : {4, 8}) {
+        for (float f : {0.03f, 0.2f, 0.51f, 0.9f}) {
+            const Image image = test::render(method, edgeScene(f), 4, 4, optionsFor(method), nullptr, ShadingMode::Unlit, n);
+            const float coverage = image.at(2, 1).x;
+            EXPECT_NEAR(coverage, f, 1.0f / float(n * n) + 1e-4f) << method << " aa " << n << " f " << f;
+        }
+    }
+    const Image grid = test::render(method, edgeScene(0.03f), 4, 4, optionsFor(method), nullptr, ShadingMode::Unlit, 8, true);
+    EXPECT_EQ(grid.at(2, 1).x, 0.0f) << "the grid's first column sits 1/16 pixel in";
+}
+
+INSTANTIATE_TEST_SUITE_P(CpuMethods, EdgeCoverage, ::testing::ValuesIn(kMethods));
+
+namespace {
+
+// A static quad filling an 8x6 image, textured with a 64x48 texture (8x8 texels per pixel, one
+// random grey per pixel), and each pixel's box integral of the texture (its bilinear
+// reconstruction).
+struct TexturedQuad {
+    Scene scene;
+    std::vector<float> texelMean;  ///< per pixel, the red channel's box integral
+};
+
+TexturedQuad texturedQuad(int texelsPerPixel) {
+    constexpr int kW = 8, kH = 6;
+    const int tw = kW * texelsPerPixel, th = kH * texelsPerPixel;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    // Each pixel's block of texels is one random grey: a footprint wider than a sample spacing
+    // blends neighbouring pixels' greys in.
+    std::vector<float> blocks(std::size_t(kW) * kH);
+    for (float& b : blocks) b = uniform(rng);
+    std::vector<glm::vec4> texels(std::size_t(tw) * th);
+    for (int y = 0; y < th; ++y)
+        for (int x = 0; x < tw; ++x)
+            texels[std::size_t(y) * tw + x] = glm::vec4(glm::vec3(blocks[std::size_t(y / texelsPerPixel) * kW + std::size_t(x / texelsPerPixel)]), 1.0f);
+    TexturedQuad out;
+    out.scene = test::emptyScene();
+    out.scene.textures.push_back(Texture::fromLinear(tw, th, texels, WrapMode::ClampToEdge, WrapMode::ClampToEdge));
+    Material m;
+    m.baseColorTexture = 0;
+    m.doubleSided = true;
+    out.scene.materials.push_back(m);
+    const test::PixelCamera cam{kW, kH, 2.0f};
+    test::addPixelQuad(out.scene, cam, 0, 0.0f, 0.0f, float(kW), float(kH));
+    out.scene.meshes[0].uvs = {{0.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}};
+    validateScene(out.scene);
+    // The box integral of the level-0 bilinear reconstruction, by a 32 x 32 midpoint rule.
+    const Texture& texture = out.scene.textures[0];
+    for (int py = 0; py < kH; ++py)
+        for (int px = 0; px < kW; ++px) {
+            double sum = 0.0;
+            for (int j = 0; j < 32; ++j)
+                for (int i = 0; i < 32; ++i) {
+                    const glm::vec2 uv((float(px) + (float(i) + 0.5f) / 32.0f) / float(kW), (float(py) + (float(j) + 0.5f) / 32.0f) / float(kH));
+                    sum += texture.sampleBilinear(uv, 0).x;
+                }
+            out.texelMean.push_back(float(sum / 1024.0));
+        }
+    return out;
+}
+
+}  // namespace
+
+class TextureBoxIntegral : public ::testing::TestWithParam<const char*> {};
+
+// Under --aa N each sample's footprint is one sample spacing, so the N x N samples integrate
+// the texture over the pixel: the image converges to the box integral as N grows. (A footprint
+// of one pixel per sample filters twice: each sample already averages the pixel's texels and
+// their neighbours, and the box filter blurs again.)
+TEST_P(TextureBoxIntegral, ConvergesToThePixelsBoxIntegral) {
+    const std::string method = GetParam();
+    const TexturedQuad quad = texturedQuad(8);
+    double previous = 1.0;
+    for (int n : {2, 4, 8}) {
+        const Image image = test::render(method, quad.scene, 8, 6, optionsFor(method), nullptr, ShadingMode::Unlit, n);
+        double worst = 0.0;
+        for (int py = 1; py < 5; ++py)  // border pixels: clamp-to-edge filtering differs there
+            for (int px = 1; px < 7; ++px) worst = std::max(worst, double(std::abs(image.at(px, py).x - quad.texelMean[std::size_t(py * 8 + px)])));
+        std::printf("%s aa %d: worst %.4f\n", method.c_str(), n, worst);
+        EXPECT_LT(worst, 0.5 * previous) << method << " aa " << n << ": more samples must converge";
+        previous = worst;
+        if (n == 8) EXPECT_LT(worst, 0.01) << method;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(CpuMethods, TextureBoxIntegral, ::testing::ValuesIn(kMethods));
+
+}  // namespace streak
