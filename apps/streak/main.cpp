@@ -315,8 +315,8 @@ int run(int argc, char** argv) {
     render->add_option("--width", renderArgs.width, "image width in pixels")->capture_default_str();
     render->add_option("--height", renderArgs.height, "image height in pixels")->capture_default_str();
     render->add_option("--samples", renderArgs.samples, "time samples (accumulation: 256 shutter times; stochastic: 8 per pixel)");
-    render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (150)");
-    render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (90); analytic: compression budget K (0: unlimited)");
+    render->add_option("--max-fragments", renderArgs.maxFragments, "motion-path: fragment budget per pixel sample (4096; the paper's 150 is motion-path-gl's default)");
+    render->add_option("--max-intervals", renderArgs.maxIntervals, "motion-path: interval budget per pixel sample (2048; the paper's 90 is motion-path-gl's default); analytic: compression budget K (0: unlimited)");
     render->add_option("--mask-bits", renderArgs.maskBits, "motion-path: time slices per mask, 32|64|128|256 (128)");
     render->add_option("--texture-samples", renderArgs.textureSamples, "motion-path: at most this many texture taps per interval (32)");
     render->add_option("--sort", renderArgs.sort, "motion-path: depth-time sort of intervals, 1 (on) or 0 (nearest-first only) (1)");

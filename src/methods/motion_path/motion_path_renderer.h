@@ -33,8 +33,9 @@ namespace streak {
 // - --aa N is supported.
 //
 // Options:
-// - max-fragments: paths per sample, default 150. On overflow the nearest are kept.
-// - max-intervals: default 90. On overflow the nearest are kept.
+// - max-fragments: paths per sample, default 4096 (the paper's GPU budget: 150). On overflow the
+//   nearest are kept, and the samples counted.
+// - max-intervals: default 2048 (the paper's: 90). On overflow the nearest are kept.
 // - mask-bits: 32, 64, 128 or 256; default 128.
 // - texture-samples: at most k texture taps per interval, default 32.
 // - taps-per-texel: texture taps per texel of the footprint's mip level, default 2.
