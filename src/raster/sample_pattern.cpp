@@ -7,27 +7,27 @@
 
 namespace streak::raster {
 
-SamplePattern SamplePattern::rooks(int n) {
+// The n x n samples, cell (i, j) at offset(i, j) in pixel fractions.
+template <class Offset>
+SamplePattern SamplePattern::build(int n, Offset offset) {
     assert(n >= 1);
     SamplePattern pattern;
     pattern.m_samplesPerAxis = n;
-    const double cells = double(n) * double(n);
     for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            pattern.offsets.emplace_back(std::int64_t(std::floor((double(i) * n + j + 0.5) / cells * kSubpixelScale)),
-                                         std::int64_t(std::floor((double(j) * n + i + 0.5) / cells * kSubpixelScale)));
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec2 p = offset(double(i), double(j));
+            pattern.offsets.emplace_back(std::int64_t(std::floor(p.x * kSubpixelScale)), std::int64_t(std::floor(p.y * kSubpixelScale)));
+        }
     return pattern;
 }
 
+SamplePattern SamplePattern::rooks(int n) {
+    const double cells = double(n) * double(n);
+    return build(n, [&](double i, double j) { return glm::dvec2((i * n + j + 0.5) / cells, (j * n + i + 0.5) / cells); });
+}
+
 SamplePattern SamplePattern::grid(int n) {
-    assert(n >= 1);
-    SamplePattern pattern;
-    pattern.m_samplesPerAxis = n;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            pattern.offsets.emplace_back(std::int64_t(std::floor((i + 0.5) / n * kSubpixelScale)),
-                                         std::int64_t(std::floor((j + 0.5) / n * kSubpixelScale)));
-    return pattern;
+    return build(n, [&](double i, double j) { return glm::dvec2((i + 0.5) / n, (j + 0.5) / n); });
 }
 
 SamplePattern samplePatternFor(int n, bool isGrid) { return isGrid ? SamplePattern::grid(n) : SamplePattern::rooks(n); }

@@ -29,14 +29,14 @@ struct SamplePattern {
     int count() const { return int(offsets.size()); }
     // The spacing of the samples along each axis in fixed-point units (a pixel over n): the
     // texture footprint of one sample, since the box filter integrates the samples.
-    std::int64_t footprintStep() const { return footprintStepFor(m_samplesPerAxis); }
-    static std::int64_t footprintStepFor(int samplesPerAxis) {
-        return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(samplesPerAxis)));
-    }
+    std::int64_t footprintStep() const { return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(m_samplesPerAxis))); }
     // The NDC position of sample s of pixel (px, py) in a width x height image.
     glm::dvec2 ndcOf(int px, int py, int s, int width, int height) const;
 
 private:
+    template <class Offset>
+    static SamplePattern build(int n, Offset offset);
+
     int m_samplesPerAxis = 1;
 };
 

@@ -151,9 +151,13 @@ private:
         if (o.imageHeight < 1) throw Error("the image height must be positive");
         if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
         if (o.camera && o.lookAt) throw Error("a glTF camera and an explicit camera cannot both be given");
-        const double t0 = o.frame / o.fps, t1 = (o.frame + o.shutter) / o.fps;
-        const int numKeys = o.motionKeys == 0 ? 2 : o.motionKeys;  // adaptive keys start from two
-        for (int k = 0; k < numKeys; ++k) m_keyTimes.push_back(float(t0 + (t1 - t0) * double(k) / double(numKeys - 1)));
+        m_numKeys = o.motionKeys == 0 ? 2 : o.motionKeys;  // chosen keys start from two
+    }
+
+    // Seconds of animation time of key k of numKeys, evenly over the shutter.
+    float keyTime(int k, int numKeys) const {
+        const double t0 = m_options.frame / m_options.fps, t1 = (m_options.frame + m_options.shutter) / m_options.fps;
+        return float(t0 + (t1 - t0) * double(k) / double(numKeys - 1));
     }
 
     // Nodes with their parents, checking that the hierarchy is a forest and transforms are finite.
@@ -196,7 +200,7 @@ private:
             if (src.mesh >= 0) {
                 const int numTargets = this->numTargets(src.mesh);
                 numWeights += std::size_t(numTargets);
-                if (numWeights > m_options.limits.maxVertexWork / m_keyTimes.size())
+                if (numWeights > m_options.limits.maxVertexWork / std::size_t(m_numKeys))
                     throw Error("the nodes' morph weights times motion keys exceed the limit of " + str(m_options.limits.maxVertexWork));
                 const std::vector<double>& weights = !src.weights.empty() ? src.weights : m_model.meshes[std::size_t(src.mesh)].weights;
                 if (!weights.empty() && weights.size() != std::size_t(numTargets))
@@ -333,7 +337,7 @@ private:
     // any vertex is read.
     void collectInstances() {
         std::size_t numTriangles = 0, vertexWork = 0;
-        const std::size_t numKeys = m_keyTimes.size();
+        const std::size_t numKeys = std::size_t(m_numKeys);
         for (std::size_t i = 0; i < m_nodes.size(); ++i) {
             const tinygltf::Node& node = m_model.nodes[i];
             if (!m_isInScene[i] || node.mesh < 0) continue;
@@ -623,23 +627,21 @@ private:
     // pieces of exact methods stay exact) until the keys stay within options.keyTolerancePixels
     // of the animation on screen, or the cap (maxMotionKeys, the vertex-work limit) is reached.
     void sampleKeys() {
-        const double t0 = m_options.frame / m_options.fps, t1 = (m_options.frame + m_options.shutter) / m_options.fps;
-        auto timeOf = [&](int k, int numKeys) { return float(t0 + (t1 - t0) * double(k) / double(numKeys - 1)); };
         std::vector<PosedInstances> keys;
-        for (std::size_t k = 0; k < m_keyTimes.size(); ++k) keys.push_back(poseAt(m_keyTimes[k], keys.empty() ? nullptr : &keys.back()));
+        for (int k = 0; k < m_numKeys; ++k) keys.push_back(poseAt(keyTime(k, m_numKeys), keys.empty() ? nullptr : &keys.back()));
         m_openPoses = keys.front().nodes;
         m_closePoses = keys.back().nodes;
         const bool isAdaptive = m_options.motionKeys == 0;
         double deviation = -1.0;
         if (isAdaptive && m_options.shutter > 0.0 && !m_instances.empty()) {
-            writeMeshes(keys, t0, t1);
+            writeMeshes(keys);
             placeCamera();  // the deviation is measured through it
             const std::size_t cap = std::size_t(std::clamp(m_options.maxMotionKeys, 2, kMaxMotionKeys));
             while (true) {
                 const int numKeys = int(keys.size());
                 if (std::size_t(2 * numKeys - 1) * m_vertexWorkPerKey > m_options.limits.maxVertexWork) break;
                 std::vector<PosedInstances> middles;
-                for (int k = 0; k + 1 < numKeys; ++k) middles.push_back(poseAt(timeOf(2 * k + 1, 2 * numKeys - 1), &keys[std::size_t(k)]));
+                for (int k = 0; k + 1 < numKeys; ++k) middles.push_back(poseAt(keyTime(2 * k + 1, 2 * numKeys - 1), &keys[std::size_t(k)]));
                 deviation = keyDeviation(keys, middles);
                 if (deviation <= m_options.keyTolerancePixels || std::size_t(2 * numKeys - 1) > cap) break;
                 std::vector<PosedInstances> refined;
@@ -650,7 +652,7 @@ private:
                 keys = std::move(refined);
             }
         }
-        writeMeshes(keys, t0, t1);
+        writeMeshes(keys);
         if (m_stats) {
             m_stats->setCounter("motion_keys", double(keys.size()));
             if (deviation >= 0.0) m_stats->setCounter("motion_key_deviation_px", deviation);
@@ -658,12 +660,12 @@ private:
     }
 
     // One streak Mesh per instance from the key poses.
-    void writeMeshes(const std::vector<PosedInstances>& keys, double t0, double t1) {
+    void writeMeshes(const std::vector<PosedInstances>& keys) {
         const int numKeys = int(keys.size());
         m_scene.meshes.clear();
         // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding clockwise;
         // flip it back so that front faces stay counter-clockwise. Judged at mid-shutter.
-        const gltf::NodePoses middle = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, float(0.5 * (t0 + t1)));
+        const gltf::NodePoses middle = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, keyTime(1, 3));
         for (std::size_t i = 0; i < m_instances.size(); ++i) {
             const Instance& instance = m_instances[i];
             const PrimitiveData& data = *instance.data;
@@ -771,7 +773,7 @@ private:
     AccessorReader m_reader;
     gltf::DocumentLimits m_documentLimits;
     Scene m_scene;
-    std::vector<float> m_keyTimes;                                   ///< seconds of animation time of the first keys
+    int m_numKeys = 2;                                               ///< keys sampled first (options.motionKeys, or 2 to refine)
     std::size_t m_vertexWorkPerKey = 0;                              ///< GltfLimits::maxVertexWork's measure of one key
     std::vector<gltf::Node> m_nodes;
     std::vector<bool> m_isInScene;                                   ///< per node: reachable from the scene's roots

@@ -65,8 +65,8 @@ bool surfaceAt(inout SpanPoint p, float t, bool withFootprint, out SurfacePoint 
     double u = localTime(p, t);
     HomogeneousSample s, right, down;
     // One sample spacing in NDC: the texture footprint (u_viewport.xy is the sample grid).
-    dvec2 pixel = dvec2(2.0 / double(u_viewport.x), 2.0 / double(u_viewport.y));
-    sampleWithNeighbours(p.moving, u, p.ndc, dvec2(pixel.x, 0.0), dvec2(0.0, -pixel.y), s, right, down);
+    dvec2 spacing = dvec2(2.0 / double(u_viewport.x), 2.0 / double(u_viewport.y));
+    sampleWithNeighbours(p.moving, u, p.ndc, dvec2(spacing.x, 0.0), dvec2(0.0, -spacing.y), s, right, down);
     if (!s.isValid) return false;
     dvec3 baryRight = s.bary, baryDown = s.bary;
     if (withFootprint && right.isValid && down.isValid && right.viewDepth > 0.0 && down.viewDepth > 0.0) {
