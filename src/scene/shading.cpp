@@ -7,11 +7,11 @@
 
 namespace streak {
 
-ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, float lod,
+ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, const TextureFootprint& footprint,
                            const glm::vec4& vertexColor) {
     const Material& material = scene.materials[materialIndex];
     glm::vec4 texel(1.0f);
-    if (material.baseColorTexture >= 0) texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, lod);
+    if (material.baseColorTexture >= 0) texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, footprint);
     return {material.baseColor * glm::vec3(texel) * glm::vec3(vertexColor), material.alphaOf(texel.w * vertexColor.w)};
 }
 
@@ -41,10 +41,7 @@ glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::ve
 
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye) {
     const Material& material = scene.materials[point.material];
-    float lod = 0.0f;
-    if (material.baseColorTexture >= 0)
-        lod = scene.textures[std::size_t(material.baseColorTexture)].lodFromFootprint(point.duvdx, point.duvdy);
-    ShadedColor result = materialAlbedo(scene, point.material, point.uv, lod, point.vertexColor);
+    ShadedColor result = materialAlbedo(scene, point.material, point.uv, {point.duvdx, point.duvdy}, point.vertexColor);
     if (mode == ShadingMode::Phong)
         result.color = lightPhong(scene, material, result.color, point.position, point.normal, point.isFrontFacing, eye);
     return result;

@@ -35,10 +35,10 @@ struct ShadedColor {
 // The one shading function every CPU method calls, so methods differ only in visibility.
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);
 
-// Albedo and alpha only (base colour times texture times vertex colour), sampled at an explicit
-// level of detail; methods that average texture along a path (motion paths) pick their own lod.
-// A Mask material's alpha is already cut to 0 or 1 here, so averages of it are coverage.
-ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, float lod,
+// Albedo and alpha only (base colour times texture times vertex colour), the texture filtered
+// over an explicit footprint (default: a level-0 tap). A Mask material's alpha is already cut
+// to 0 or 1 here, so averages of it are coverage.
+ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, const TextureFootprint& footprint = {},
                            const glm::vec4& vertexColor = glm::vec4(1.0f));
 
 // Phong lighting split by what multiplies the albedo: colour = albedo * diffuse + specular.

@@ -103,7 +103,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     // Vertex colours change slowly across a triangle: the one at mid-span serves the whole span.
     const glm::vec4 vertexColor = ends[1].vertexColor;
     if (material.baseColorTexture < 0) {
-        const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, 0.0f, vertexColor);
+        const ShadedColor albedo = materialAlbedo(scene, materialIndex, ends[1].uv, {}, vertexColor);
         if (!isLit) return albedo;
         return {albedo.color * lighting->mean().diffuse + lighting->mean().specular, albedo.alpha};
     }
@@ -111,14 +111,16 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const Texture& texture = scene.textures[std::size_t(material.baseColorTexture)];
     const glm::vec2 size(float(texture.width()), float(texture.height()));
     std::array<float, 3> footprintLod{};
-    for (int i = 0; i < 3; ++i) footprintLod[i] = texture.lodFromFootprint(ends[i].duvdx, ends[i].duvdy);
+    for (int i = 0; i < 3; ++i) footprintLod[i] = texture.finestLodOfFootprint(ends[i].duvdx, ends[i].duvdy);
     // The uv path's length in texels along its longer axis, through the middle.
     const glm::vec2 a = glm::abs(ends[1].uv - ends[0].uv) * size, b = glm::abs(ends[2].uv - ends[1].uv) * size;
     const float pathTexels = std::max(a.x + b.x, a.y + b.y);
     const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
     const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
     const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
-    const QuadraticThrough<float> footprintLodAt(footprintLod[0], footprintLod[1], footprintLod[2]);
+    // The footprint moves along the span with the surface: quadratic through its three ends.
+    const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);
+    const QuadraticThrough<glm::vec2> duvdyAt(ends[0].duvdy, ends[1].duvdy, ends[2].duvdy);
 
     // Texel sums; the base colour and the vertex colour multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
@@ -128,8 +130,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         const float f = (float(i) + 0.5f) / float(taps);
         glm::vec2 uv = ends[1].uv;
         if (2 * i + 1 != taps && !point.uvAt(t0 + f * (t1 - t0), uv)) continue;
-        const float lod = std::max(pathLod, footprintLodAt(f));
-        const glm::vec4 texel = texture.sample(uv, lod);
+        const glm::vec4 texel = texture.sample(uv, TextureFootprint{duvdxAt(f), duvdyAt(f), pathLod});
         if (isLit) {
             const PhongTerms terms = lighting->at(f);
             sum += glm::vec3(texel) * terms.diffuse;

@@ -125,6 +125,52 @@ glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const {
     return glm::mix(a, sampleBilinear(uv, level + 1), frac);
 }
 
+namespace {
+
+// The ellipse of a footprint in texels: the singular values of J = [a b] (the eigenvalues of
+// J J^T are their squares) and the major axis, scaled to its length.
+struct FootprintEllipse {
+    float major = 0.0f, minor = 0.0f;
+    glm::vec2 majorAxis{0.0f};
+};
+
+FootprintEllipse footprintEllipse(const glm::vec2& a, const glm::vec2& b) {
+    const float p = a.x * a.x + b.x * b.x, q = a.x * a.y + b.x * b.y, r = a.y * a.y + b.y * b.y;
+    const float mean = 0.5f * (p + r), spread = std::sqrt(0.25f * (p - r) * (p - r) + q * q);
+    FootprintEllipse e;
+    e.major = std::sqrt(std::max(mean + spread, 0.0f));
+    e.minor = std::sqrt(std::max(mean - spread, 0.0f));
+    // An eigenvector of J J^T for mean + spread, from the better-conditioned row.
+    const glm::vec2 axis = std::abs(p - r) + std::abs(q) == 0.0f ? glm::vec2(1.0f, 0.0f)
+                           : p >= r                          ? glm::vec2(mean + spread - r, q)
+                                                             : glm::vec2(q, mean + spread - p);
+    e.majorAxis = axis * (e.major / glm::length(axis));
+    return e;
+}
+
+}  // namespace
+
+glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
+    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
+    if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
+    const float width = std::max({e.minor, e.major / float(kMaxAnisotropy), std::exp2(footprint.minLod)});
+    const int taps = std::clamp(int(std::ceil(e.major / width - 1e-3f)), 1, kMaxAnisotropy);
+    const float lod = width > 0.0f ? std::log2(width) : 0.0f;
+    if (taps == 1) return sample(uv, lod);
+    const glm::vec2 step = e.majorAxis / size / float(taps);  // uv between taps
+    glm::vec4 sum(0.0f);
+    for (int i = 0; i < taps; ++i) sum += sample(uv + step * (float(i) + 0.5f - 0.5f * float(taps)), lod);
+    return sum / float(taps);
+}
+
+float Texture::finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
+    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
+    const float width = std::max(e.minor, e.major / float(kMaxAnisotropy));
+    return width > 0.0f ? std::log2(width) : 0.0f;
+}
+
 float Texture::lodFromFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
     const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
     const float lengthSquared = std::max(glm::dot(duvdx * size, duvdx * size), glm::dot(duvdy * size, duvdy * size));

@@ -12,6 +12,15 @@ namespace streak {
 // How uv outside [0,1] maps onto a texture axis (the glTF sampler modes).
 enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 
+// The area of a texture one lookup integrates: the uv change over one sample spacing right and
+// down, and a level of detail not to go below (span shading's tap spacing along a uv path).
+// The default, no area, is a bilinear tap of level 0.
+struct TextureFootprint {
+    glm::vec2 duvdx{0.0f};
+    glm::vec2 duvdy{0.0f};
+    float minLod = 0.0f;
+};
+
 // Texture is a linear-light RGBA texture with its full mip chain, built once at load time.
 // uv (0,0) is the top-left corner of the first row (glTF convention); texel centres sit at
 // half-integer texel coordinates. Sampling is bilinear within a level and linear between levels.
@@ -37,6 +46,14 @@ public:
     glm::vec4 sampleBilinear(const glm::vec2& uv, int level) const;
     // Trilinear: lod 0 is the full-resolution level; clamped to the chain.
     glm::vec4 sample(const glm::vec2& uv, float lod) const;
+    // Anisotropic: the footprint's ellipse (the singular vectors of [duvdx duvdy] in texels)
+    // covered by up to kMaxAnisotropy trilinear taps along its major axis, each at the level of
+    // the minor axis, so a surface seen at a slant stays sharp across its compressed direction.
+    static constexpr int kMaxAnisotropy = 16;
+    glm::vec4 sample(const glm::vec2& uv, const TextureFootprint& footprint) const;
+    // The level of the anisotropic taps for a footprint (minLod 0): the finest detail a lookup
+    // keeps, so what taps along a uv path must be spaced by not to alias.
+    float finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const;
     // The level of detail for a uv footprint (the uv change over one pixel step in x and y):
     // log2 of the longer footprint axis in texels, as GPUs compute it.
     float lodFromFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const;

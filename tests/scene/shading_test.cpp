@@ -50,19 +50,19 @@ TEST(MaterialAlbedo, MultipliesBaseTextureAndVertexColourAndCutsMasks) {
     const glm::vec2 left(0.25f, 0.5f), right(0.75f, 0.5f);
     const glm::vec4 vertex(0.5f, 1.0f, 0.25f, 0.8f);
     const Scene blend = sceneWithAlphaTexture(AlphaMode::Blend, 1.0f);
-    const ShadedColor b = materialAlbedo(blend, 0, right, 0.0f, vertex);
+    const ShadedColor b = materialAlbedo(blend, 0, right, {}, vertex);
     EXPECT_FLOAT_EQ(b.color.x, 0.25f);
     EXPECT_FLOAT_EQ(b.color.y, 1.0f);
     EXPECT_FLOAT_EQ(b.color.z, 0.25f);
     EXPECT_FLOAT_EQ(b.alpha, 0.75f * 0.8f);
     // Mask with cutoff 0.5: 0.75 * 0.8 = 0.6 passes, 0.25 * 0.8 does not.
     const Scene mask = sceneWithAlphaTexture(AlphaMode::Mask, 1.0f);
-    EXPECT_EQ(materialAlbedo(mask, 0, right, 0.0f, vertex).alpha, 1.0f);
-    EXPECT_EQ(materialAlbedo(mask, 0, left, 0.0f, vertex).alpha, 0.0f);
+    EXPECT_EQ(materialAlbedo(mask, 0, right, {}, vertex).alpha, 1.0f);
+    EXPECT_EQ(materialAlbedo(mask, 0, left, {}, vertex).alpha, 0.0f);
     // Without a vertex colour the default is white.
-    EXPECT_FLOAT_EQ(materialAlbedo(blend, 0, left, 0.0f).alpha, 0.25f);
+    EXPECT_FLOAT_EQ(materialAlbedo(blend, 0, left).alpha, 0.25f);
     const Scene opaque = sceneWithAlphaTexture(AlphaMode::Opaque, 1.0f);
-    EXPECT_EQ(materialAlbedo(opaque, 0, left, 0.0f, vertex).alpha, 1.0f);
+    EXPECT_EQ(materialAlbedo(opaque, 0, left, {}, vertex).alpha, 1.0f);
 }
 
 TEST(FlatGeometry, InterpolatesVertexColoursIntoTheSurfacePoint) {

@@ -1,5 +1,5 @@
 // Shading shared by the GL methods, the GLSL twin of scene/shading.cpp: material albedo with
-// the glTF alpha modes, trilinear texture taps at an explicit level of detail, Phong lighting
+// the glTF alpha modes, anisotropic texture filtering over a footprint, Phong lighting
 // split into what multiplies the albedo and what adds to it.
 
 struct SurfacePoint {
@@ -21,20 +21,52 @@ vec4 sampleTexture(int index, vec2 uv, float lod) {
     return texel;
 }
 
-// Texture::lodFromFootprint: log2 of the longer footprint axis in texels.
-float lodFromFootprint(int index, vec2 duvdx, vec2 duvdy) {
-    vec2 size = vec2(textureSize(u_textures[0], 0));
-    for (int i = 1; i < MAX_TEXTURES; ++i)
-        if (i == index) size = vec2(textureSize(u_textures[i], 0));
-    float lengthSquared = max(dot(duvdx * size, duvdx * size), dot(duvdy * size, duvdy * size));
-    return lengthSquared > 0.0 ? 0.5 * log2(lengthSquared) : 0.0;
-}
-
 vec2 textureSizeOf(int index) {
     vec2 size = vec2(1.0);
     for (int i = 0; i < MAX_TEXTURES; ++i)
         if (i == index) size = vec2(textureSize(u_textures[i], 0));
     return size;
+}
+
+// footprintEllipse (texture.cpp): the footprint's semi-axes in texels, and the major axis.
+struct FootprintEllipse {
+    float major, minor;
+    vec2 majorAxis;
+};
+
+FootprintEllipse footprintEllipse(vec2 a, vec2 b) {
+    float p = a.x * a.x + b.x * b.x, q = a.x * a.y + b.x * b.y, r = a.y * a.y + b.y * b.y;
+    float mean = 0.5 * (p + r), spread = sqrt(0.25 * (p - r) * (p - r) + q * q);
+    FootprintEllipse e;
+    e.major = sqrt(max(mean + spread, 0.0));
+    e.minor = sqrt(max(mean - spread, 0.0));
+    vec2 axis = abs(p - r) + abs(q) == 0.0 ? vec2(1.0, 0.0) : p >= r ? vec2(mean + spread - r, q) : vec2(q, mean + spread - p);
+    e.majorAxis = axis * (e.major / length(axis));
+    return e;
+}
+
+// Texture::sample(uv, TextureFootprint): up to 16 trilinear taps along the major axis of the
+// footprint's ellipse, each at the level of the minor axis (and not below minLod).
+vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
+    vec2 size = textureSizeOf(index);
+    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
+    if (isinf(e.major) || isnan(e.major)) return sampleTexture(index, uv, 1000.0);
+    float width = max(max(e.minor, e.major / 16.0), exp2(minLod));
+    int taps = clamp(int(ceil(e.major / width - 1e-3)), 1, 16);
+    float lod = width > 0.0 ? log2(width) : 0.0;
+    if (taps == 1) return sampleTexture(index, uv, lod);
+    vec2 step = e.majorAxis / size / float(taps);
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < taps; ++i) sum += sampleTexture(index, uv + step * (float(i) + 0.5 - 0.5 * float(taps)), lod);
+    return sum / float(taps);
+}
+
+// Texture::finestLodOfFootprint: the level of the anisotropic taps.
+float finestLodOfFootprint(int index, vec2 duvdx, vec2 duvdy) {
+    vec2 size = textureSizeOf(index);
+    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
+    float width = max(e.minor, e.major / 16.0);
+    return width > 0.0 ? log2(width) : 0.0;
 }
 
 bool isTranslucentMaterial(uint m) { return materials[m].info.w != 0; }
@@ -49,10 +81,10 @@ float alphaOf(uint m, float pointAlpha) {
 }
 
 // materialAlbedo: base colour times texture times vertex colour, and alpha through the mode.
-vec4 materialAlbedo(uint m, vec2 uv, float lod, vec4 vertexColor) {
+vec4 materialAlbedo(uint m, vec2 uv, vec2 duvdx, vec2 duvdy, vec4 vertexColor) {
     MaterialData mat = materials[m];
     vec4 texel = vec4(1.0);
-    if (mat.info.x >= 0) texel = sampleTexture(mat.info.x, uv, lod);
+    if (mat.info.x >= 0) texel = sampleFootprint(mat.info.x, uv, duvdx, duvdy, 0.0);
     return vec4(mat.baseColorOpacity.rgb * texel.rgb * vertexColor.rgb, alphaOf(m, texel.a * vertexColor.a));
 }
 
@@ -82,9 +114,7 @@ bool isLit() { return u_flags.x != 0; }
 
 // shadeSurface: the colour and alpha of a point at one instant, seen from `eye`.
 vec4 shadeSurface(SurfacePoint p, vec3 eye) {
-    int tex = materials[p.material].info.x;
-    float lod = tex >= 0 ? lodFromFootprint(tex, p.duvdx, p.duvdy) : 0.0;
-    vec4 result = materialAlbedo(p.material, p.uv, lod, p.vertexColor);
+    vec4 result = materialAlbedo(p.material, p.uv, p.duvdx, p.duvdy, p.vertexColor);
     if (isLit()) {
         PhongTerms terms = phongTerms(p.material, p.position, p.normal, p.isFrontFacing, eye);
         result.rgb = result.rgb * terms.diffuse + terms.specular;

@@ -146,7 +146,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     vec4 vertexColor = ends[1].vertexColor;
     MaterialData mat = materials[m];
     if (mat.info.x < 0) {
-        vec4 albedo = materialAlbedo(m, ends[1].uv, 0.0, vertexColor);
+        vec4 albedo = materialAlbedo(m, ends[1].uv, vec2(0.0), vec2(0.0), vertexColor);
         if (!lit) return albedo;
         return vec4(albedo.rgb * meanDiffuse + meanSpecular, albedo.a);
     }
@@ -154,7 +154,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     int tex = mat.info.x;
     vec2 size = textureSizeOf(tex);
     float footprintLod[3];
-    for (int i = 0; i < 3; ++i) footprintLod[i] = lodFromFootprint(tex, ends[i].duvdx, ends[i].duvdy);
+    for (int i = 0; i < 3; ++i) footprintLod[i] = finestLodOfFootprint(tex, ends[i].duvdx, ends[i].duvdy);
     vec2 a = abs(ends[1].uv - ends[0].uv) * size, b = abs(ends[2].uv - ends[1].uv) * size;
     float pathTexels = max(a.x + b.x, a.y + b.y);
     float spacing = exp2(max(0.0, min(footprintLod[0], min(footprintLod[1], footprintLod[2]))));
@@ -168,8 +168,9 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
         float f = (float(i) + 0.5) / float(numTaps);
         vec2 uv = ends[1].uv;
         if (2 * i + 1 != numTaps && !uvAt(point, t0 + f * (t1 - t0), uv)) continue;
-        float lodAt = quadraticThrough(vec3(footprintLod[0]), vec3(footprintLod[1]), vec3(footprintLod[2]), f).x;
-        vec4 texel = sampleTexture(tex, uv, max(pathLod, lodAt));
+        vec2 duvdx = quadraticThrough(vec3(ends[0].duvdx, 0.0), vec3(ends[1].duvdx, 0.0), vec3(ends[2].duvdx, 0.0), f).xy;
+        vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
+        vec4 texel = sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
         if (lit) {
             vec3 diffuse, specular;
             if (lightingTaps <= 3) {
