@@ -136,6 +136,11 @@ Scene makeCubes(OptionMap& options) {
     const int n = options.getInt("n", 1000, 0, 1000000);
     const int seed = options.getInt("seed", 1, 0, 1 << 30);
     const int keys = options.getInt("keys", 2, 2, 64);
+    // Each cube pose is 24 vertices: two million poses are about 2 GB of scene.
+    constexpr long long kMaxCubePoses = 2000000;
+    if (static_cast<long long>(n) * keys > kMaxCubePoses)
+        throw Error("scene 'cubes': n * keys must be at most " + std::to_string(kMaxCubePoses) + ", got " + std::to_string(n) + " * " +
+                    std::to_string(keys));
     Scene scene = defaultSceneFrame("cubes");
     scene.textures.push_back(checkerTexture(128, 8, {235, 235, 235}, {60, 60, 60}));
     scene.textures.push_back(gridTexture(128, 4, {230, 230, 230}, {30, 30, 30}));

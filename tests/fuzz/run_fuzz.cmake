@@ -1,7 +1,9 @@
-# Runs the glTF fuzz target for a bounded number of inputs (CTest: GltfLoader.Fuzz). Arguments:
-# FUZZER (the binary), WORK (a scratch corpus folder, emptied first), DICT, and SEEDS (seed
-# folders separated by '|'; absent ones are left out). Any finding fails the test, and
-# libFuzzer leaves the crashing input in WORK as crash-*/leak-*/timeout-*/oom-*.
+# Runs a fuzz target for a bounded number of inputs (CTest: GltfLoader.Fuzz, BuiltinScenes.Fuzz,
+# MethodOptions.Fuzz). Arguments: FUZZER (the binary), WORK (a scratch corpus folder, emptied
+# first), DICT, SEEDS (seed folders separated by '|'; absent ones are left out), RUNS and SECONDS
+# (it stops at whichever comes first), TIMEOUT (seconds an input may take) and RSS_MB (memory).
+# Any finding fails the test, and libFuzzer leaves the input in WORK as crash-*/leak-*/
+# timeout-*/oom-*.
 string(REPLACE "|" ";" seeds "${SEEDS}")
 set(existing "")
 foreach(dir IN LISTS seeds)
@@ -14,9 +16,9 @@ endforeach()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}/corpus")
 execute_process(
-  COMMAND "${FUZZER}" -runs=${RUNS} -max_total_time=${SECONDS} -timeout=20 -rss_limit_mb=2048 -seed=1 -dict=${DICT}
+  COMMAND "${FUZZER}" -runs=${RUNS} -max_total_time=${SECONDS} -timeout=${TIMEOUT} -rss_limit_mb=${RSS_MB} -seed=1 -dict=${DICT}
           -artifact_prefix=${WORK}/ -print_final_stats=1 "${WORK}/corpus" ${existing}
   RESULT_VARIABLE result)
 if(NOT result EQUAL 0)
-  message(FATAL_ERROR "the glTF fuzz target found a problem (exit ${result}); the input is in ${WORK}")
+  message(FATAL_ERROR "${FUZZER} found a problem (exit ${result}); the input is in ${WORK}")
 endif()

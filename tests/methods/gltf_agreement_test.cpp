@@ -8,6 +8,7 @@
 #include "image/metrics.h"
 #include "scene/scene_loader.h"
 #include "support/render.h"
+#include "support/sanitized.h"
 #include "support/shared_scenes.h"
 
 #include <gtest/gtest.h>
@@ -99,7 +100,7 @@ TEST_P(GltfAgreement, AccumulationAndMotionPathAgree) {
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    const Image reference = render("accumulation", scene, 256);
+    const Image reference = render("accumulation", scene, test::kSanitized ? 64 : 256);
     const auto middle = Clock::now();
     const Image motionPath = render("motion-path", scene);
     const auto end = Clock::now();

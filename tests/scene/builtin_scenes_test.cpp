@@ -1,4 +1,5 @@
 #include "scene/builtin_scenes.h"
+#include "util/error.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,19 @@ TEST(BuiltinScenes, AllBuildValidAndDeterministic) {
         validateScene(b);
         ASSERT_EQ(a.meshes.size(), b.meshes.size());
         for (std::size_t m = 0; m < a.meshes.size(); ++m) EXPECT_EQ(a.meshes[m].positions, b.meshes[m].positions);
+    }
+}
+
+// Sizes are bounded together, not only one by one: a million cubes of 64 keys would be 45 GB.
+TEST(BuiltinScenes, CubesRejectsMorePosesThanItsBudget) {
+    OptionMap huge;
+    huge.set("n", "1000000");
+    huge.set("keys", "64");
+    try {
+        makeBuiltinScene("cubes", huge);
+        FAIL() << "expected an Error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("n * keys must be at most 2000000"), std::string::npos) << e.what();
     }
 }
 

@@ -3,7 +3,9 @@
 #include "image/metrics.h"
 #include "methods/registry.h"
 #include "scene/builtin_scenes.h"
+#include "scene/scene_loader.h"
 #include "support/render.h"
+#include "support/shared_scenes.h"
 #include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
@@ -135,6 +137,36 @@ TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
     EXPECT_FLOAT_EQ(image.at(4, 4).x, 0.0f);
     EXPECT_EQ(stats.counter("fragment_overflow_samples"), 64.0);
     EXPECT_EQ(stats.counter("intervals_per_sample_max"), 3.0);
+}
+
+// A dense double-sided model under a camera move (BENCHMARKS, "Budgets on the CPU"): the
+// default budgets drop nothing, so the image is the one of budgets 16 times larger, while the
+// paper's GPU budgets (150 fragments, 90 intervals) overflow and lose geometry visibly.
+TEST(MotionPathRenderer, DefaultBudgetsDropNothingOnADenseModel) {
+    STREAK_REQUIRE_SHARED_SCENES();
+    GltfOptions gltf;
+    GltfLookAt look;
+    look.position = {-0.03f, 0.025f, 0.05f};
+    look.target = {0.0f, 0.0f, 0.0f};
+    look.positionEnd = glm::vec3(-0.02f, 0.025f, 0.055f);
+    look.verticalFovDegrees = 40.0f;
+    gltf.lookAt = look;
+    Scene scene = loadScene(test::sharedScene("ToyCar/glTF/ToyCar.gltf"), gltf);
+    validateScene(scene);
+    auto budgets = [](int fragments, int intervals) {
+        OptionMap options = withOption("max-fragments", std::to_string(fragments));
+        options.set("max-intervals", std::to_string(intervals));
+        return options;
+    };
+    RenderStats defaults, paper;
+    const Image image = render("motion-path", scene, 160, 120, OptionMap(), &defaults);
+    const Image unlimited = render("motion-path", scene, 160, 120, budgets(1 << 16, 1 << 15));
+    const Image paperImage = render("motion-path", scene, 160, 120, budgets(150, 90), &paper);
+    EXPECT_EQ(defaults.counter("fragment_overflow_samples"), 0.0);
+    EXPECT_EQ(defaults.counter("interval_overflow_samples"), 0.0);
+    EXPECT_GT(psnr(image, unlimited), 90.0);
+    EXPECT_GT(paper.counter("fragment_overflow_samples") + paper.counter("interval_overflow_samples"), 0.0);
+    EXPECT_LT(psnr(paperImage, unlimited), 45.0) << "the scene must be dense enough for the paper's budgets to lose geometry";
 }
 
 }  // namespace streak
