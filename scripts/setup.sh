@@ -12,6 +12,8 @@ packages=(
   clang libclang-rt-14-dev
   python3-matplotlib
 )
+# --bench: Blender too, for the Cycles ground truth of bench/cycles_reference.py (not for CI).
+if [ "${1:-}" = "--bench" ]; then packages+=(blender); fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,14 +5,19 @@
 #include "methods/registry.h"
 #include "raster/clip.h"
 #include "scene/builtin_scenes.h"
+#include "scene/camera.h"
+#include "scene/gltf_writer.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
 
 #include <CLI/CLI.hpp>
+#include <glm/trigonometric.hpp>
 #include <tbb/global_control.h>
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -183,6 +188,32 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     return options;
 }
 
+// "x,y,z,..." with every digit a float holds, so another renderer can rebuild the camera.
+template <typename... T>
+std::string numberList(T... values) {
+    std::string text;
+    for (const double value : {double(values)...}) {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.9g", value);
+        text += (text.empty() ? "" : ",") + std::string(buffer);
+    }
+    return text;
+}
+
+// The camera the scene was rendered through (glTF camera, explicit or framing; built-in), in the
+// scene's world (glTF: +y up): each pose's position and worldFromCamera rotation (w,x,y,z; the
+// camera looks down its -z with +y up), the vertical field of view and the near plane.
+void reportCamera(const Camera& camera, RenderStats& stats) {
+    for (const auto& [name, pose] : {std::pair{"open", &camera.open}, std::pair{"close", &camera.close}}) {
+        const glm::vec3& p = pose->position;
+        const glm::quat& q = pose->worldFromCamera;
+        stats.setInfo(std::string("camera_") + name + "_position", numberList(p.x, p.y, p.z));
+        stats.setInfo(std::string("camera_") + name + "_rotation_wxyz", numberList(q.w, q.x, q.y, q.z));
+    }
+    stats.setInfo("camera_vertical_fov_deg", numberList(glm::degrees(camera.verticalFov)));
+    stats.setInfo("camera_znear", numberList(camera.zNear));
+}
+
 int runRender(const RenderArgs& args) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -244,6 +275,7 @@ int runRender(const RenderArgs& args) {
     stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
     stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
     stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
+    reportCamera(scene.camera, stats);
 
     // Frames before the last warm up what a renderer keeps between frames (GL programs and the
     // driver's compiled code, caches); the image and stats are the last frame's.
@@ -270,8 +302,17 @@ int runRender(const RenderArgs& args) {
     return 0;
 }
 
-int runCompare(const std::string& a, const std::string& b, const std::string& heatmap) {
+std::string decibels(double value) {
+    if (std::isinf(value)) return "inf";
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(4) << value;
+    return out.str();
+}
+
+int runCompare(const std::string& a, const std::string& b, const std::string& heatmap, double foregroundLevel) {
     if (!heatmap.empty()) checkWritable(heatmap, true);
+    if (!(foregroundLevel >= 0.0 && foregroundLevel < 255.0))
+        throw Error("--foreground-threshold must be in [0, 255) (sRGB 8-bit levels), got " + std::to_string(foregroundLevel));
     const Image imageA = readImage(a);
     const Image imageB = readImage(b);
     if (imageA.width() != imageB.width() || imageA.height() != imageB.height())
@@ -279,16 +320,29 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
                     b + " (" + std::to_string(imageB.width()) + "x" + std::to_string(imageB.height()) + "): sizes differ");
     const double p = psnr(imageA, imageB);
     const double s = ssim(imageA, imageB);
+    const ForegroundPsnr foreground = foregroundPsnr(imageA, imageB, float(foregroundLevel / 255.0));
     std::ostringstream out;
     out.precision(4);
-    out << std::fixed << "PSNR: " << (std::isinf(p) ? std::string("inf") : (std::ostringstream() << std::fixed << std::setprecision(4) << p).str())
-        << " dB\nSSIM: " << s << "\n";
+    out << std::fixed << "PSNR: " << decibels(p) << " dB\nSSIM: " << s << "\n";
+    out << "foreground PSNR: " << decibels(foreground.psnr) << " dB (" << foreground.pixels << " pixels)\n";
     if (!heatmap.empty()) {
         double maxError = 0.0;
         writeImage(errorHeatmap(imageA, imageB, &maxError), heatmap);
         out << "heatmap: " << heatmap << " (white = " << maxError << " largest error)\n";
     }
     std::cout << out.str();
+    return 0;
+}
+
+int runExport(const std::string& spec, const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".glb") throw Error("cannot write " + path + ": export writes glTF binary (.glb) only");
+    checkWritable(path, false);
+    Scene scene = loadScene(spec, GltfOptions{}, nullptr);
+    validateScene(scene);
+    const std::vector<std::uint8_t> bytes = writeGltfBinary(scene);
+    writeTextFile(path, std::string(bytes.begin(), bytes.end()));
     return 0;
 }
 
@@ -352,10 +406,22 @@ int run(int argc, char** argv) {
     render->add_option("--fov", renderArgs.fov, "glTF: explicit camera vertical field of view in degrees (45)");
 
     std::string compareA, compareB, heatmap;
-    CLI::App* compare = app.add_subcommand("compare", "print PSNR (dB) and SSIM of two images of the same size");
+    double foregroundLevel = 2.0;
+    CLI::App* compare = app.add_subcommand(
+        "compare", "print PSNR (dB), SSIM and foreground PSNR (over the pixels where either image is above the threshold) of two images of the same size");
     compare->add_option("a", compareA, "first image (.png or .exr)")->required();
     compare->add_option("b", compareB, "second image (.png or .exr)")->required();
     compare->add_option("--heatmap", heatmap, "write a false-colour image of the per-pixel error");
+    compare->add_option("--foreground-threshold", foregroundLevel,
+                        "foreground: pixels where a channel of either image is above this, in sRGB 8-bit levels")
+        ->capture_default_str();
+
+    std::string exportScene, exportPath;
+    CLI::App* exportCommand = app.add_subcommand(
+        "export", "write a scene as glTF 2.0 binary (.glb): motion keys as morph targets over the animation's first second "
+                  "(render it with --frame 0 --shutter 24 --fps 24)");
+    exportCommand->add_option("scene", exportScene, "scene: builtin:NAME[?key=value&...] or a glTF file (its default shutter)")->required();
+    exportCommand->add_option("output", exportPath, "output file (.glb)")->required();
 
     CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, one per line");
     CLI::App* methods = app.add_subcommand("methods", "list the motion-blur methods, one per line");
@@ -373,7 +439,8 @@ int run(int argc, char** argv) {
         return kExitBadInput;
     }
     if (render->parsed()) return runRender(renderArgs);
-    if (compare->parsed()) return runCompare(compareA, compareB, heatmap);
+    if (compare->parsed()) return runCompare(compareA, compareB, heatmap, foregroundLevel);
+    if (exportCommand->parsed()) return runExport(exportScene, exportPath);
     if (scenes->parsed()) return runScenes();
     if (methods->parsed()) return runMethods();
     return kExitBadInput;

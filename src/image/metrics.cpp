@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -87,18 +88,37 @@ glm::vec3 heatColor(float t) {
     return {srgbToLinear(display.x), srgbToLinear(display.y), srgbToLinear(display.z)};
 }
 
+// PSNR of the encoded RGB over every pixel, or (given a threshold) over the pixels where either
+// image has an encoded channel above it.
+ForegroundPsnr squaredErrorPsnr(const Image& a, const Image& b, std::optional<float> threshold) {
+    double sumSquared = 0.0;
+    ForegroundPsnr result;
+    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+        const glm::vec3 ea = linearToSrgb(a.pixels()[i]), eb = linearToSrgb(b.pixels()[i]);
+        if (threshold && !(std::max({ea.x, ea.y, ea.z, eb.x, eb.y, eb.z}) > *threshold)) continue;
+        const glm::vec3 d = ea - eb;
+        sumSquared += double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+        ++result.pixels;
+    }
+    if (sumSquared == 0.0) {
+        result.psnr = std::numeric_limits<double>::infinity();
+        return result;
+    }
+    const double mse = sumSquared / (3.0 * double(result.pixels));
+    result.psnr = 10.0 * std::log10(1.0 / mse);
+    return result;
+}
+
 }  // namespace
 
 double psnr(const Image& a, const Image& b) {
     checkComparable(a, b, "psnr", false);
-    double sumSquared = 0.0;
-    for (std::size_t i = 0; i < a.pixels().size(); ++i) {
-        const glm::vec3 d = linearToSrgb(a.pixels()[i]) - linearToSrgb(b.pixels()[i]);
-        sumSquared += double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
-    }
-    if (sumSquared == 0.0) return std::numeric_limits<double>::infinity();
-    const double mse = sumSquared / (3.0 * double(a.pixels().size()));
-    return 10.0 * std::log10(1.0 / mse);
+    return squaredErrorPsnr(a, b, std::nullopt).psnr;
+}
+
+ForegroundPsnr foregroundPsnr(const Image& a, const Image& b, float threshold) {
+    checkComparable(a, b, "foregroundPsnr", false);
+    return squaredErrorPsnr(a, b, threshold);
 }
 
 double ssim(const Image& a, const Image& b) {

@@ -82,6 +82,48 @@ TEST(Metrics, PsnrIsSymmetric) {
     EXPECT_GT(psnr(a, noisy(a, 0.01f, 7)), psnr(a, b));
 }
 
+TEST(Metrics, ForegroundPsnrKnownValue) {
+    // Five pixels, encoded 8-bit values; foreground: a channel of either image above 2/255.
+    //   0: both black                      background
+    //   1: a black, b grey 1/255           background (its error is not counted)
+    //   2: a black, b red 3/255            foreground: error (3/255)^2
+    //   3: a grey 0.5, b grey 0.4 (encoded) foreground: error 3 * 0.1^2
+    //   4: a green 255, b green 255        foreground, no error
+    // Foreground: 3 pixels, 9 samples. MSE = ((3/255)^2 + 0.03) / 9; PSNR = 24.751222 dB.
+    // Whole image: (3 (1/255)^2 + (3/255)^2 + 0.03) / 15: 26.963067 dB.
+    Image a(5, 1), b(5, 1);
+    b.at(1, 0) = glm::vec3(srgb8ToLinear(1));
+    b.at(2, 0).x = srgb8ToLinear(3);
+    a.at(3, 0) = glm::vec3(srgbToLinear(0.5f));
+    b.at(3, 0) = glm::vec3(srgbToLinear(0.4f));
+    a.at(4, 0).y = b.at(4, 0).y = srgb8ToLinear(255);
+    const ForegroundPsnr foreground = foregroundPsnr(a, b);
+    EXPECT_EQ(foreground.pixels, 3u);
+    EXPECT_NEAR(foreground.psnr, 24.751222, 1e-3);
+    EXPECT_NEAR(psnr(a, b), 26.963067, 1e-3);
+    // Symmetric: "either image".
+    EXPECT_EQ(foregroundPsnr(b, a).pixels, 3u);
+    EXPECT_EQ(foregroundPsnr(b, a).psnr, foreground.psnr);
+    // A threshold of 0 takes pixel 1 in: 12 samples, ((3 (1/255)^2 + (3/255)^2 + 0.03) / 12,
+    // 25.993966 dB. A threshold of 0.45 keeps pixels 3 and 4: 0.03 / 6, 23.010300 dB.
+    EXPECT_EQ(foregroundPsnr(a, b, 0.0f).pixels, 4u);
+    EXPECT_NEAR(foregroundPsnr(a, b, 0.0f).psnr, 25.993966, 1e-3);
+    EXPECT_EQ(foregroundPsnr(a, b, 0.45f).pixels, 2u);
+    EXPECT_NEAR(foregroundPsnr(a, b, 0.45f).psnr, 23.010300, 1e-3);
+}
+
+TEST(Metrics, ForegroundPsnrOfBlackAndIdenticalImages) {
+    // No foreground at all: nothing differs, +infinity over 0 pixels.
+    const ForegroundPsnr black = foregroundPsnr(Image(4, 3), Image(4, 3));
+    EXPECT_EQ(black.pixels, 0u);
+    EXPECT_EQ(black.psnr, std::numeric_limits<double>::infinity());
+    const Image a = pattern(9, 7);
+    const ForegroundPsnr same = foregroundPsnr(a, a);
+    EXPECT_EQ(same.pixels, 63u);
+    EXPECT_EQ(same.psnr, std::numeric_limits<double>::infinity());
+    EXPECT_THROW(foregroundPsnr(Image(4, 3), Image(3, 4)), Error);
+}
+
 TEST(Metrics, SsimIdenticalIsOne) {
     for (const auto& [w, h] : {std::pair{32, 24}, std::pair{1, 1}, std::pair{3, 2}, std::pair{1, 40}}) {
         const Image a = noisy(pattern(w, h), 0.1f, 3);

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""streak against Cycles on every shared model (issue 12): ground truth streak did not write.
+
+Each shared model at 320x240 (its frame, shutter and animation as in
+tests/methods/gltf_agreement_test.cpp; the static models from their default camera), through
+every CPU method (`streak methods`, without the -gl ones) with `--aa 8 --shading unlit
+--background 0,0,0` and otherwise default settings, against Cycles at the reference spp (1024)
+from bench/cycles_reference.py: PSNR, foreground PSNR (over the pixels where either image is
+above 2/255 in sRGB 8-bit; `streak compare`) and render time (least of --repeats). Then
+Cycles' own spp ladder (16, 32, ... 512, each with its own seed) against the same reference:
+the fewest spp, and their render time, at which Cycles reaches each method's foreground PSNR.
+Since streak and the ladder are measured against the same noisy reference, a rung "reaches" a
+method when its error (its noise plus the reference's) is no larger than the method's. Past the
+top rung the spp are estimated from the error falling as 1/spp (fitted at the top rung), or the
+method is said to be within the reference's own noise.
+
+Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,analytic]
+    [--spp 1024] [--ladder 16,32,64,128,256,512] [--out DIR] [--streak build/streak]
+    [--blender blender] [--repeats 1]
+"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import benchlib  # noqa: E402
+import cycles_reference  # noqa: E402
+
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
+# name, file, scene flags (frame, shutter, animation): where the motion is large but not wild.
+MODELS = [
+    ("AnimatedTriangle", "AnimatedTriangle/glTF/AnimatedTriangle.gltf", {"frame": 3, "shutter": 2}),
+    ("AnimatedCube", "AnimatedCube/glTF/AnimatedCube.gltf", {"frame": 12, "shutter": 2}),
+    ("BoxAnimated", "BoxAnimated/glTF-Binary/BoxAnimated.glb", {"frame": 12, "shutter": 3}),
+    ("InterpolationTest", "InterpolationTest/glTF-Binary/InterpolationTest.glb",
+     {"frame": 12, "shutter": 3, "animation": "CubicSpline Rotation"}),
+    ("SimpleSkin", "SimpleSkin/glTF/SimpleSkin.gltf", {"frame": 12, "shutter": 6}),
+    ("RiggedSimple", "RiggedSimple/glTF-Binary/RiggedSimple.glb", {"frame": 20, "shutter": 3}),
+    ("RiggedFigure", "RiggedFigure/glTF-Binary/RiggedFigure.glb", {"frame": 10, "shutter": 2}),
+    ("CesiumMan", "CesiumMan/glTF-Binary/CesiumMan.glb", {"frame": 12, "shutter": 2}),
+    ("Fox", "Fox/glTF-Binary/Fox.glb", {"frame": 10, "shutter": 1, "animation": "Run"}),
+    ("SimpleMorph", "SimpleMorph/glTF/SimpleMorph.gltf", {"frame": 24, "shutter": 12}),
+    ("AnimatedMorphCube", "AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb", {"frame": 30, "shutter": 6}),
+    ("MorphStressTest", "MorphStressTest/glTF-Binary/MorphStressTest.glb",
+     {"frame": 24, "shutter": 6, "animation": "TheWave"}),
+    ("ToyCar", "ToyCar/glTF/ToyCar.gltf", {}),  # static, its first glTF camera
+    ("MetalRoughSpheresNoTextures", "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", {}),
+]
+STREAK_FLAGS = ["--aa", "8", "--shading", "unlit", "--background", "0,0,0"]
+
+
+def compare(streak, a, b):
+    """(PSNR, foreground PSNR, foreground pixels) from `streak compare`."""
+    out = subprocess.run([streak, "compare", a, b], check=True, capture_output=True, text=True).stdout
+    psnr = float(re.search(r"^PSNR: (\S+) dB", out, re.M).group(1))
+    m = re.search(r"^foreground PSNR: (\S+) dB \((\d+) pixels\)", out, re.M)
+    return psnr, float(m.group(1)), int(m.group(2))
+
+
+def cpu_methods(streak):
+    out = subprocess.run([streak, "methods"], check=True, capture_output=True, text=True).stdout
+    return [line.split()[0] for line in out.splitlines() if line.strip() and not line.split()[0].endswith("-gl")]
+
+
+def scene_flags(flags):
+    return [f"--{key}={value}" for key, value in flags.items()]
+
+
+def db(value):
+    return "inf" if value == float("inf") else f"{value:.1f} dB"
+
+
+def equal_rung(ladder, target):
+    """The first (spp, seconds, fg PSNR) rung of the ladder reaching `target`, or None."""
+    return next((rung for rung in ladder if rung[2] >= target), None)
+
+
+def mse(psnr):
+    return 10 ** (-psnr / 10)
+
+
+def cycles_equal(ladder, reference_spp, reference_seconds, target):
+    """What Cycles needs to reach foreground PSNR `target` against the reference: the first rung
+    that does, or past the top rung an estimate from the 1/spp model fitted there (error of N
+    spp against the reference = v/N + v/R), or the note that the target is past the
+    reference's own noise (v/R)."""
+    if not ladder:
+        return ""
+    rung = equal_rung(ladder, target)
+    if rung:
+        return f"{rung[0]} spp, {rung[1]:.1f} s"
+    top_spp, top_seconds, top_fg = ladder[-1]
+    variance = mse(top_fg) / (1 / top_spp + 1 / reference_spp)
+    left = mse(target) - variance / reference_spp
+    if left <= 0:
+        return f"> {top_spp} spp ({top_seconds:.1f} s); within the reference's noise"
+    spp = variance / left
+    return f"> {top_spp} spp ({top_seconds:.1f} s); ~{spp:.0f} spp, ~{spp / reference_spp * reference_seconds:.0f} s est."
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--streak", default=cycles_reference.STREAK)
+    parser.add_argument("--blender", default="blender")
+    parser.add_argument("--models", default="", help="comma-separated model names (default: all)")
+    parser.add_argument("--methods", default="", help="comma-separated methods (default: every CPU method)")
+    parser.add_argument("--spp", type=int, default=1024, help="Cycles spp of the reference")
+    parser.add_argument("--ladder", default="16,32,64,128,256,512", help="Cycles spp compared with the reference")
+    parser.add_argument("--width", type=int, default=320)
+    parser.add_argument("--height", type=int, default=240)
+    parser.add_argument("--repeats", type=int, default=1, help="streak renders per method; the least time counts")
+    parser.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "streak-ground-truth"))
+    args = parser.parse_args()
+    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
+    methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
+    ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
+    size = f"{args.width}x{args.height}"
+    print(f"Machine: {benchlib.machine()}. streak {' '.join(STREAK_FLAGS)} at {size}, least of {args.repeats}; "
+          f"reference: Cycles {args.spp} spp; ladder: {args.ladder} spp (its own seeds) against that reference.\n")
+    print("| model | method | PSNR | fg PSNR | time | Cycles to equal fg PSNR |\n|---|---|---:|---:|---:|---|")
+    ladders = []
+    streak = benchlib.Streak(args.streak, args.out, args.repeats)
+    for name, path, flags in chosen:
+        scene, out = os.path.join(SCENES, path), os.path.join(args.out, name)
+        os.makedirs(out, exist_ok=True)
+        spp_list = ladder_spp + [args.spp]
+        renders = cycles_reference.render(
+            scene, scene_flags(flags), spp_list, out, streak=args.streak, blender=args.blender, width=args.width,
+            height=args.height, frame=float(flags.get("frame", 0)), shutter=float(flags.get("shutter", 0.5)),
+            animation=flags.get("animation"))
+        reference = renders[args.spp]["path"]
+        ladder = []
+        for spp in ladder_spp:
+            _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
+            ladder.append((spp, renders[spp]["seconds"], fg))
+        ladders.append((name, ladder, renders[args.spp]["seconds"]))
+        for method in methods:
+            image = os.path.join(out, f"{method}.exr")
+            ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + STREAK_FLAGS)
+            psnr, fg, pixels = compare(args.streak, image, reference)
+            equal = cycles_equal(ladder, args.spp, renders[args.spp]["seconds"], fg)
+            print(f"| {name} | {method} | {db(psnr)} | {db(fg)} ({pixels} px) | {ms / 1000:.2f} s | {equal} |", flush=True)
+    if ladder_spp:
+        print("\nCycles' ladder: foreground PSNR against the reference and render time (scene sync and BVH "
+              "included); the reference's own noise floor, estimated from the top rung as if the error fell as 1/spp "
+              "(what an exact renderer would score against it)\n")
+        print("| model | " + " | ".join(f"{s} spp" for s in ladder_spp) + f" | {args.spp} spp | reference noise floor |")
+        print("|---|" + "---:|" * (len(ladder_spp) + 2))
+        for name, ladder, seconds in ladders:
+            top_spp, _, top_fg = ladder[-1]
+            floor = top_fg + 10 * math.log10(args.spp / top_spp + 1)  # v/R, with v from the top rung
+            print(f"| {name} | " + " | ".join(f"{db(fg)}, {s:.1f} s" for _, s, fg in ladder) +
+                  f" | {seconds:.1f} s | {db(floor)} |")
+
+
+if __name__ == "__main__":
+    main()
