@@ -7,8 +7,12 @@ Sections:
   keys    the skinned characters at 320x240 --aa 2: motion-path and analytic with 2 keys and
           with the default (chosen) keys, against accumulation (1024 times) of 65 keys, the
           animation itself to within a hundredth of a pixel; render time and keys chosen.
+  hard    the classes of motion where motion-path once trailed analytic (issue 12, item 5):
+          thin bars crossing many pixels, camera-only motion over a textured world, skinned
+          figures with 8 keys, stacked translucent layers; 256x192 Phong, against accumulation
+          (3000 times): both methods' PSNR and the gap.
 
-Usage: bench/fidelity_bench.py [--streak build/streak] [--sections frames,keys] [--repeats N]
+Usage: bench/fidelity_bench.py [--streak build/streak] [--sections frames,keys,hard] [--repeats N]
 """
 import os
 
@@ -64,5 +68,29 @@ def keys(streak, args):
     print()
 
 
+HARD = [("thin bars", "builtin:fence?bars=40&travel=3", []),
+        ("camera-only, textured", "builtin:pan", []),
+        ("camera-only, textured glTF, 8 keys", os.path.join(SCENES, "ToyCar/glTF/ToyCar.gltf"),
+         ["--camera-pos=-0.03,0.025,0.05", "--camera-target", "0,0,0", "--camera-target-end=0.01,0,0", "--fov", "40", "--motion-keys", "8"]),
+        ("skinned figure, 8 keys", os.path.join(SCENES, "CesiumMan/glTF-Binary/CesiumMan.glb"), ["--frame", "12", "--shutter", "2", "--motion-keys", "8"]),
+        ("skinned figure, 8 keys", os.path.join(SCENES, "Fox/glTF-Binary/Fox.glb"), ["--animation", "Run", "--frame", "10", "--shutter", "2", "--motion-keys", "8"]),
+        ("stacked translucent layers", "builtin:translucent", [])]
+
+
+def hard(streak, args):
+    print("| class | scene | motion-path | analytic | gap |\n|---|---|---:|---:|---:|")
+    ref, out = os.path.join(streak.tmp, "ref.exr"), os.path.join(streak.tmp, "out.exr")
+    for label, scene, extra in HARD:
+        streak.render(scene, "accumulation", ref, size="256x192", args=extra + ["--samples", "3000"], repeats=1)
+        db = {}
+        for method in ["motion-path", "analytic"]:
+            streak.render(scene, method, out, size="256x192", args=extra, repeats=1)
+            db[method] = streak.psnr(ref, out)
+        name = scene.split("/")[-1] if not scene.startswith("builtin:") else f"`{scene}`"
+        print(f"| {label} | {name} | {db['motion-path']:.1f} dB | {db['analytic']:.1f} dB | {db['motion-path'] - db['analytic']:+.1f} dB |",
+              flush=True)
+    print()
+
+
 if __name__ == "__main__":
-    benchlib.run_sections({"frames": frames, "keys": keys}, default_plot="")
+    benchlib.run_sections({"frames": frames, "keys": keys, "hard": hard}, default_plot="")

@@ -3,6 +3,7 @@
 #include "image/metrics.h"
 #include "methods/registry.h"
 #include "scene/builtin_scenes.h"
+#include "support/sanitized.h"
 #include "support/test_scenes.h"
 #include "util/error.h"
 
@@ -92,10 +93,12 @@ TEST(ReferenceRenderers, StaticSceneRendersTheSameUnderBoth) {
 
 class ReferenceConvergence : public ::testing::Test {
 protected:
-    // accumulation with 2048 shutter times on rotating-cube at 256x192: the converged image.
+    // accumulation with 2048 shutter times on rotating-cube at 256x192 (128x96 sanitized): the
+    // converged image.
+    static constexpr int kW = test::kSanitized ? 128 : 256, kH = test::kSanitized ? 96 : 192;
     static void SetUpTestSuite() {
         s_scene = new Scene(builtin("rotating-cube"));
-        s_reference = new Image(renderWith("accumulation", *s_scene, 256, 192, 2048, 1, ShadingMode::Phong));
+        s_reference = new Image(renderWith("accumulation", *s_scene, kW, kH, 2048, 1, ShadingMode::Phong));
     }
     static void TearDownTestSuite() {
         delete s_scene;
@@ -108,17 +111,17 @@ Scene* ReferenceConvergence::s_scene = nullptr;
 Image* ReferenceConvergence::s_reference = nullptr;
 
 TEST_F(ReferenceConvergence, AccumulationConvergesWithSamples) {
-    const double psnr16 = psnr(renderWith("accumulation", *s_scene, 256, 192, 16, 1, ShadingMode::Phong), *s_reference);
-    const double psnr256 = psnr(renderWith("accumulation", *s_scene, 256, 192, 256, 1, ShadingMode::Phong), *s_reference);
+    const double psnr16 = psnr(renderWith("accumulation", *s_scene, kW, kH, 16, 1, ShadingMode::Phong), *s_reference);
+    const double psnr256 = psnr(renderWith("accumulation", *s_scene, kW, kH, 256, 1, ShadingMode::Phong), *s_reference);
     EXPECT_GE(psnr256, 40.0);
     EXPECT_GT(psnr256, psnr16 + 6.0);
 }
 
 TEST_F(ReferenceConvergence, Stochastic1024SppReachesTheReference) {
-    const Image stochastic = renderWith("stochastic", *s_scene, 256, 192, 1024, 1, ShadingMode::Phong);
+    const Image stochastic = renderWith("stochastic", *s_scene, kW, kH, 1024, 1, ShadingMode::Phong);
     EXPECT_GE(psnr(stochastic, *s_reference), 33.0);
     // And it is noisy at a low sample count: fewer samples, lower PSNR.
-    const Image noisy = renderWith("stochastic", *s_scene, 256, 192, 4, 1, ShadingMode::Phong);
+    const Image noisy = renderWith("stochastic", *s_scene, kW, kH, 4, 1, ShadingMode::Phong);
     EXPECT_LT(psnr(noisy, *s_reference), psnr(stochastic, *s_reference) - 10.0);
 }
 
