@@ -38,6 +38,7 @@ struct Options {
     int maxFragments = kLosslessFragments;
     int maxIntervals = kLosslessIntervals;
     int maskBits = 128;
+    bool exactWeights = true;  ///< opaque pieces measured in time, not in mask slices
     int textureSamples = 16;
     bool sortIntervals = true;
     int curveSegments = 4;
@@ -151,6 +152,7 @@ public:
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
+        stats.setCounter("exact_weights", m_options.exactWeights ? 1 : 0);
         stats.setCounter("texture_samples", m_options.textureSamples);
         stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
         stats.setCounter("curve_segments", m_options.curveSegments);
@@ -365,8 +367,10 @@ private:
         for (std::size_t i = 0; i < numSamples; ++i) {
             const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
             if (end == begin) continue;
-            scratch.backgroundWeights[i] = motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
-                                                                       std::span(scratch.weights).subspan(begin, end - begin));
+            scratch.backgroundWeights[i] =
+                motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
+                                            std::span(scratch.weights).subspan(begin, end - begin),
+                                            options.exactWeights ? motion_path::OpaqueWeights::Exact : motion_path::OpaqueWeights::Slices);
         }
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
@@ -387,8 +391,13 @@ private:
                 if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
                     sum += interval.color * scratch.weights[k];
                 else {
-                    const int bits = motion_path::TimeMask::span(interval.t0, interval.t1, options.maskBits).count();
-                    const bool isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
+                    bool isWhole;
+                    if (options.exactWeights) {
+                        isWhole = scratch.weights[k] >= (interval.t1 - interval.t0) * (1.0f - 1e-5f);
+                    } else {
+                        const int bits = motion_path::TimeMask::span(interval.t0, interval.t1, options.maskBits).count();
+                        isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
+                    }
                     spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
                 }
             }
@@ -418,6 +427,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.maxFragments = options.getInt("max-fragments", kLosslessFragments, 2, 1 << 16);
     o.maxIntervals = options.getInt("max-intervals", kLosslessIntervals, 1, 1 << 16);
     o.maskBits = options.getInt("mask-bits", 128, 32, 256);
+    o.exactWeights = options.getInt("exact-weights", 1, 0, 1) != 0;
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);

@@ -36,7 +36,10 @@ namespace streak {
 // - max-fragments: paths per sample, default 4096 (the paper's GPU budget: 150). On overflow the
 //   nearest are kept, and the samples counted.
 // - max-intervals: default 2048 (the paper's: 90). On overflow the nearest are kept.
-// - mask-bits: 32, 64, 128 or 256; default 128.
+// - mask-bits: 32, 64, 128 or 256; default 128. With exact weights (the default) they time
+//   translucent samples only.
+// - exact-weights: 1 (default) measures each visible opaque piece in time; 0 counts mask slices
+//   as the paper does (error up to 1/mask-bits per piece).
 // - texture-samples: at most k texture taps per interval, default 32.
 // - taps-per-texel: texture taps per texel of the footprint's mip level, default 2.
 // - sort: 1, or 0 for minimum-depth order only; default 1.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace streak::motion_path {
@@ -23,6 +24,33 @@ float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<flo
     }
     std::fill(weights.begin() + std::ptrdiff_t(std::min(i + 1, sorted.size())), weights.end(), 0.0f);
     return float(numBits - accumulated.count()) * scale;
+}
+
+float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights) {
+    // The union of the spans so far, disjoint and in time order.
+    thread_local std::vector<std::pair<float, float>> covered;
+    covered.clear();
+    float coveredLength = 0.0f;
+    std::size_t i = 0;
+    for (; i < sorted.size() && coveredLength < 1.0f; ++i) {
+        const float t0 = std::clamp(sorted[i].t0, 0.0f, 1.0f), t1 = std::clamp(sorted[i].t1, 0.0f, 1.0f);
+        weights[i] = 0.0f;
+        if (!(t1 > t0)) continue;
+        // Spans overlapping [t0, t1] hide part of it and merge with it into one.
+        float hidden = 0.0f, lo = t0, hi = t1;
+        auto first = std::lower_bound(covered.begin(), covered.end(), t0, [](const auto& span, float t) { return span.second <= t; });
+        auto last = first;
+        for (; last != covered.end() && last->first < t1; ++last) {
+            hidden += std::min(last->second, t1) - std::max(last->first, t0);
+            lo = std::min(lo, last->first), hi = std::max(hi, last->second);
+        }
+        const float visible = std::max(0.0f, (t1 - t0) - hidden);
+        weights[i] = visible;
+        coveredLength += visible;
+        covered.insert(covered.erase(first, last), {lo, hi});
+    }
+    std::fill(weights.begin() + std::ptrdiff_t(i), weights.end(), 0.0f);
+    return std::max(0.0f, 1.0f - coveredLength);
 }
 
 float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::span<float> weights) {
@@ -50,14 +78,15 @@ float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::spa
 
 }  // namespace
 
-float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights) {
+float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights, OpaqueWeights opaque) {
     const bool isTranslucent = std::any_of(sorted.begin(), sorted.end(), [](const Interval& i) { return i.alpha < 1.0f; });
-    return isTranslucent ? resolveTranslucent(sorted, numBits, weights) : resolveOpaque(sorted, numBits, weights);
+    if (isTranslucent) return resolveTranslucent(sorted, numBits, weights);
+    return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights) : resolveOpaque(sorted, numBits, weights);
 }
 
-glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background) {
+glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background, OpaqueWeights opaque) {
     std::vector<float> weights(sorted.size());
-    glm::vec3 sum = background * resolveWeights(sorted, numBits, weights);
+    glm::vec3 sum = background * resolveWeights(sorted, numBits, weights, opaque);
     for (std::size_t i = 0; i < sorted.size(); ++i) sum += sorted[i].color * weights[i];
     return sum;
 }

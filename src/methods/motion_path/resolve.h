@@ -18,9 +18,17 @@ namespace streak::motion_path {
 // translucent, each slice keeps a transmittance instead of a bit (beyond the paper): weight =
 // alpha * sum(T) / n over its slices, then T *= 1 - alpha. Opacity must be known up front.
 // `weights` has one entry per interval. Returns the background's weight.
-float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights);
+//
+// OpaqueWeights::Exact (beyond the paper) measures opaque intervals in time instead of in
+// slices: each shows its span minus the union of the spans before it, which the depth-time
+// sort has put in front. Masks quantise each visible piece to whole slices (error up to 1/n per
+// piece); exact weights have none, at the cost of a short list of time spans per sample.
+enum class OpaqueWeights { Slices, Exact };
+float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights,
+                     OpaqueWeights opaque = OpaqueWeights::Slices);
 
 // The resolved colour, from the intervals' own colours.
-glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background);
+glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background,
+                           OpaqueWeights opaque = OpaqueWeights::Slices);
 
 }  // namespace streak::motion_path
