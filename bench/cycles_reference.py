@@ -200,10 +200,11 @@ def resample_gltf(path, begin, end, out_dir, samples=256):
     doc, buffers = load_gltf(path)
     rotation_samplers = {(a, c["sampler"]) for a, anim in enumerate(doc.get("animations", []))
                          for c in anim["channels"] if c["target"].get("path") == "rotation"}
-    todo = [(a, i) for a, anim in enumerate(doc.get("animations", [])) for i, sampler in enumerate(anim["samplers"])
-            if sampler.get("interpolation", "LINEAR") == "CUBICSPLINE" or
-            (sampler.get("interpolation", "LINEAR") == "LINEAR" and (a, i) in rotation_samplers)]
-    if not todo:
+    # The samplers Blender's importer misreads: CUBICSPLINE ones and LINEAR rotations.
+    misread = [(a, i) for a, anim in enumerate(doc.get("animations", [])) for i, sampler in enumerate(anim["samplers"])
+               if sampler.get("interpolation", "LINEAR") == "CUBICSPLINE" or
+               (sampler.get("interpolation", "LINEAR") == "LINEAR" and (a, i) in rotation_samplers)]
+    if not misread:
         return path
     blob = bytearray()
 
@@ -217,7 +218,7 @@ def resample_gltf(path, begin, end, out_dir, samples=256):
         doc["accessors"].append(accessor)
         return len(doc["accessors"]) - 1
 
-    for a, i in todo:
+    for a, i in misread:
         sampler = doc["animations"][a]["samplers"][i]
         interpolation = sampler.get("interpolation", "LINEAR")
         times = [t[0] for t in read_accessor(doc, buffers, sampler["input"])]

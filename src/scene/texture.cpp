@@ -148,13 +148,17 @@ FootprintEllipse footprintEllipse(const glm::vec2& a, const glm::vec2& b) {
     return e;
 }
 
+// The width in texels each anisotropic tap filters: the minor axis, unless more than
+// kMaxAnisotropy taps would be needed along the major one.
+float tapWidth(const FootprintEllipse& e, int maxTaps) { return std::max(e.minor, e.major / float(maxTaps)); }
+
 }  // namespace
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
     const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
-    const float width = std::max({e.minor, e.major / float(kMaxAnisotropy), std::exp2(footprint.minLod)});
+    const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(footprint.minLod));
     const int taps = std::clamp(int(std::ceil(e.major / width - 1e-3f)), 1, kMaxAnisotropy);
     const float lod = width > 0.0f ? std::log2(width) : 0.0f;
     if (taps == 1) return sample(uv, lod);
@@ -167,7 +171,7 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
 float Texture::finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
     const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
     const FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
-    const float width = std::max(e.minor, e.major / float(kMaxAnisotropy));
+    const float width = tapWidth(e, kMaxAnisotropy);
     return width > 0.0f ? std::log2(width) : 0.0f;
 }
 
