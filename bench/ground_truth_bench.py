@@ -16,9 +16,10 @@ method is said to be within the reference's own noise.
 
 Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,analytic]
     [--spp 1024] [--ladder 16,32,64,128,256,512] [--out DIR] [--streak build/streak]
-    [--blender blender] [--repeats 1]
+    [--blender blender] [--repeats 1] [--reuse-cycles]
 """
 import argparse
+import json
 import math
 import os
 import re
@@ -102,6 +103,22 @@ def cycles_equal(ladder, reference_spp, reference_seconds, target):
     return f"> {top_spp} spp ({top_seconds:.1f} s); ~{spp:.0f} spp, ~{spp / reference_spp * reference_seconds:.0f} s est."
 
 
+def earlier_renders(out, job, spp_list):
+    """The Cycles renders an earlier run wrote to out/cycles.json for the same size, frame, shutter
+    and animation, if it has every spp asked for; else None."""
+    try:
+        with open(os.path.join(out, "cycles.json")) as f:
+            earlier = json.load(f)
+    except (OSError, ValueError):
+        return None
+    if any(earlier["job"].get(key) != value for key, value in job.items()):
+        return None
+    renders = {int(spp): r for spp, r in earlier["result"]["renders"].items()}
+    if any(spp not in renders or not os.path.exists(renders[spp]["path"]) for spp in spp_list):
+        return None
+    return renders
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--streak", default=cycles_reference.STREAK)
@@ -114,6 +131,8 @@ def main():
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--repeats", type=int, default=1, help="streak renders per method; the least time counts")
     parser.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "streak-ground-truth"))
+    parser.add_argument("--reuse-cycles", action="store_true",
+                        help="reuse the Cycles renders an earlier run left in --out for the same job (streak re-rendered only)")
     args = parser.parse_args()
     chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
     methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
@@ -128,10 +147,12 @@ def main():
         scene, out = os.path.join(SCENES, path), os.path.join(args.out, name)
         os.makedirs(out, exist_ok=True)
         spp_list = ladder_spp + [args.spp]
-        renders = cycles_reference.render(
-            scene, scene_flags(flags), spp_list, out, streak=args.streak, blender=args.blender, width=args.width,
-            height=args.height, frame=float(flags.get("frame", 0)), shutter=float(flags.get("shutter", 0.5)),
-            animation=flags.get("animation"))
+        job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
+               "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation")}
+        renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None
+        if renders is None:
+            renders = cycles_reference.render(scene, scene_flags(flags), spp_list, out, streak=args.streak,
+                                              blender=args.blender, **job)
         reference = renders[args.spp]["path"]
         ladder = []
         for spp in ladder_spp:

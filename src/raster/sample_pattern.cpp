@@ -23,7 +23,10 @@ SamplePattern SamplePattern::build(int n, Offset offset) {
 
 SamplePattern SamplePattern::rooks(int n) {
     const double cells = double(n) * double(n);
-    return build(n, [&](double i, double j) { return glm::dvec2((i * n + j + 0.5) / cells, (j * n + i + 0.5) / cells); });
+    return build(n, [&](double i, double j) {
+        const double a = double(((int(j) - int(i)) % n + n) % n);
+        return glm::dvec2((i * n + a + 0.5) / cells, (j * n + a + 0.5) / cells);
+    });
 }
 
 SamplePattern SamplePattern::grid(int n) {

@@ -126,8 +126,9 @@ vec4 clipFromWorld(vec3 p, float t) {
 dvec2 sampleRaster(ivec2 s) {
     int n = u_flags.y;
     ivec2 pixel = s / n, sub = s - pixel * n;
+    int a = ((sub.y - sub.x) % n + n) % n;
     dvec2 offset = u_flags.z != 0 ? floor((dvec2(sub) + 0.5) / double(n) * 256.0)
-                                  : floor((dvec2(sub) * double(n) + dvec2(sub.yx) + 0.5) / double(n * n) * 256.0);
+                                  : floor((dvec2(sub) * double(n) + double(a) + 0.5) / double(n * n) * 256.0);
     return dvec2(pixel) * 256.0 + offset;
 }
 
