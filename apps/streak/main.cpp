@@ -137,6 +137,7 @@ struct RenderArgs {
     std::optional<double> fps;
     std::optional<std::string> animation;
     std::optional<int> motionKeys;
+    std::optional<std::string> motionCurve;
     std::optional<double> keyTolerance;
     std::optional<int> camera;
     std::optional<std::string> cameraPos;
@@ -154,7 +155,7 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
         {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
-        {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
+        {"--motion-curve", args.motionCurve.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
         {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
@@ -167,6 +168,10 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     options.animation = args.animation.value_or("");
     options.motionKeys = args.motionKeys.value_or(options.motionKeys);
     if (args.motionKeys && *args.motionKeys == 0) throw Error("--motion-keys must be in [2, 256], got 0");
+    if (args.motionCurve) {
+        if (*args.motionCurve == "bezier") options.motionCurve = MotionInterpolation::Bezier;
+        else if (*args.motionCurve != "linear") throw Error("--motion-curve must be linear or bezier, got '" + *args.motionCurve + "'");
+    }
     options.keyTolerancePixels = args.keyTolerance.value_or(options.keyTolerancePixels);
     options.imageHeight = args.height;
     options.camera = args.camera;
@@ -396,6 +401,8 @@ int run(int argc, char** argv) {
     render->add_option("--animation", renderArgs.animation, "glTF: animation name or index (the first)");
     render->add_option("--motion-keys", renderArgs.motionKeys,
                        "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
+    render->add_option("--motion-curve", renderArgs.motionCurve,
+                       "glTF: linear (piecewise linear keys) or bezier (the keys, 3 or 4, become the control points of the curve through them)");
     render->add_option("--key-tolerance", renderArgs.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");
     render->add_option("--camera", renderArgs.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
     render->add_option("--camera-pos", renderArgs.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");

@@ -89,10 +89,7 @@ std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::V
                 const glm::dvec2 p((double(c.x) / c.w + 1.0) * 0.5 * viewport.width, (1.0 - double(c.y) / c.w) * 0.5 * viewport.height);
                 lo = glm::min(lo, p), hi = glm::max(hi, p);
             }
-        b.x0 = int(std::clamp(std::floor(lo.x), 0.0, double(viewport.width)));
-        b.y0 = int(std::clamp(std::floor(lo.y), 0.0, double(viewport.height)));
-        b.x1 = int(std::clamp(std::floor(hi.x), -1.0, double(viewport.width - 1)));
-        b.y1 = int(std::clamp(std::floor(hi.y), -1.0, double(viewport.height - 1)));
+        b = raster::pixelBoundsOfRaster(lo, hi, viewport);
     });
     return bounds;
 }

@@ -6,27 +6,6 @@
 
 namespace streak::exposure {
 
-const raster::MovingTriangle& MovingTriangleCache::get(const SegmentedGeometry& geometry, std::uint32_t segment) {
-    if (m_slot.size() != geometry.segments().size()) {
-        m_slot.assign(geometry.segments().size(), -1);
-        m_triangles.clear(), m_used.clear();
-    }
-    std::int32_t& slot = m_slot[segment];
-    if (slot < 0) {
-        const TriangleSegment& s = geometry.segments()[segment];
-        slot = std::int32_t(m_triangles.size());
-        m_triangles.emplace_back(s.clip0, s.clip1);
-        m_used.push_back(segment);
-    }
-    return m_triangles[std::size_t(slot)];
-}
-
-void MovingTriangleCache::clear() {
-    for (const std::uint32_t segment : m_used) m_slot[segment] = -1;
-    m_used.clear();
-    m_triangles.clear();
-}
-
 TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis,
                                            std::uint32_t triangle, const glm::dvec2& ndc, MovingTriangleCache& cache)
     : m_geometry(geometry),

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "exposure/segmented_geometry.h"
+#include "exposure/triangle_cache.h"
 #include "raster/moving_triangle.h"
 #include "raster/screen_triangle.h"
 #include "scene/span_shading.h"
@@ -8,23 +9,23 @@
 #include <glm/vec2.hpp>
 
 #include <cstdint>
-#include <deque>
 #include <vector>
 
 namespace streak::exposure {
 
-// Each segment's MovingTriangle, built on first use and kept until clear(): a tile builds each
-// once however many samples and spans use it. One per thread.
+// Each segment's MovingTriangle (TriangleCache).
 class MovingTriangleCache {
 public:
-    const raster::MovingTriangle& get(const SegmentedGeometry& geometry, std::uint32_t segment);
-    // Forgets what was built (cheaply: only the entries used).
-    void clear();
+    const raster::MovingTriangle& get(const SegmentedGeometry& geometry, std::uint32_t segment) {
+        return m_cache.get(geometry.segments().size(), segment, [&] {
+            const TriangleSegment& s = geometry.segments()[segment];
+            return raster::MovingTriangle(s.clip0, s.clip1);
+        });
+    }
+    void clear() { m_cache.clear(); }
 
 private:
-    std::vector<std::int32_t> m_slot;  ///< per segment: index into m_triangles, or -1
-    std::deque<raster::MovingTriangle> m_triangles;  ///< a deque: references stay valid as it grows
-    std::vector<std::uint32_t> m_used;  ///< segments with a slot
+    TriangleCache<raster::MovingTriangle> m_cache;
 };
 
 // A triangle under one pixel sample at any time of the shutter, for span shading: exact

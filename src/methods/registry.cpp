@@ -3,6 +3,7 @@
 #include "methods/accumulation/accumulation_renderer.h"
 #include "methods/accumulation_gl/accumulation_gl_renderer.h"
 #include "methods/analytic/analytic_renderer.h"
+#include "methods/higher_order/higher_order_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
 #include "methods/stochastic/stochastic_renderer.h"
@@ -22,6 +23,8 @@ const std::array kMethods{
                createMotionPathRenderer},
     MethodInfo{"analytic", "analytic edge equations (Gribel et al. 2010): exact exposure intervals, exact resolve, compression",
                createAnalyticRenderer},
+    MethodInfo{"higher-order", "higher-order motion (Gribel et al. 2013): Bezier vertex paths, edge equations of degree 2n solved exactly, INTERVAL traversal",
+               createHigherOrderRenderer},
     MethodInfo{"accumulation", "reference: averages depth-buffered renders at S stratified shutter times (samples=256)",
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",

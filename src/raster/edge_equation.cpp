@@ -15,8 +15,12 @@ glm::dvec3 xyw(const glm::vec4& c) { return {double(c.x), double(c.y), double(c.
 }  // namespace
 
 HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc) {
+    return evaluateHomogeneousXyw({xyw(clip[0]), xyw(clip[1]), xyw(clip[2])}, ndc);
+}
+
+HomogeneousSample evaluateHomogeneousXyw(const std::array<glm::dvec3, 3>& corners, const glm::dvec2& ndc) {
     const glm::dvec3 p(ndc, 1.0);
-    const glm::dvec3 c0 = xyw(clip[0]), c1 = xyw(clip[1]), c2 = xyw(clip[2]);
+    const glm::dvec3 c0 = corners[0], c1 = corners[1], c2 = corners[2];
     const glm::dvec3 e(glm::dot(glm::cross(c1, c2), p), glm::dot(glm::cross(c2, c0), p), glm::dot(glm::cross(c0, c1), p));
     const double sum = e.x + e.y + e.z;
     HomogeneousSample s;
@@ -78,6 +82,34 @@ int solveQuadratic(const Quadratic& q, double roots[2], RootCaseCounts* counts) 
     roots[0] = r0;
     roots[1] = r1;
     return 2;
+}
+
+// An edge within float precision of zero between two breaks passes through the sample all that
+// span (a static edge on a sample: the input corners are floats, so "on" cannot mean exactly
+// zero in double). Such a sample goes by the rasterizer's top-left rule (screen_triangle.cpp):
+// to one of two triangles sharing the edge, and to a lone triangle only along its top or left
+// side (inside right of the edge in raster x, or below a horizontal one).
+bool isInsideByEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec2& ndc, const std::array<double, 3>& values) {
+    constexpr double kOnEdge = 1e-6;  // relative to the edge function's terms: ~float rounding
+    std::array<bool, 3> isOn{};
+    double orientation = 0.0;
+    for (std::size_t e = 0; e < 3; ++e) {
+        const glm::dvec3& v = edges[e];
+        const double scale = std::abs(v.x * ndc.x) + std::abs(v.y * ndc.y) + std::abs(v.z);
+        isOn[e] = std::abs(values[e]) <= kOnEdge * scale;
+        if (!isOn[e]) {
+            if (orientation != 0.0 && (orientation > 0.0) != (values[e] > 0.0)) return false;
+            orientation = values[e];
+        }
+    }
+    if (orientation == 0.0) return true;  // every edge through the sample: a degenerate instant
+    for (std::size_t e = 0; e < 3; ++e) {
+        if (!isOn[e]) continue;
+        // Inward gradient in NDC (y up); raster y points down.
+        const glm::dvec3 v = edges[e] * (orientation > 0.0 ? 1.0 : -1.0);
+        if (!(v.x > 0.0 || (v.x == 0.0 && v.y < 0.0))) return false;
+    }
+    return true;
 }
 
 glm::dvec2 ndcFromRaster(double rasterX, double rasterY, int width, int height) {

@@ -24,6 +24,14 @@ struct HomogeneousSample {
 };
 
 HomogeneousSample evaluateHomogeneous(const std::array<glm::vec4, 3>& clip, const glm::dvec2& ndc);
+// The same from the corners' clip-space (x, y, w).
+HomogeneousSample evaluateHomogeneousXyw(const std::array<glm::dvec3, 3>& xyw, const glm::dvec2& ndc);
+
+// Whether the sample at ndc is inside a triangle whose edge vectors are edges[e] (edge e of
+// corners e, e + 1: c_e x c_(e+1)) and whose edge functions there are values[e] = edges[e] . p:
+// all edges of one sign (either orientation), and an edge within float precision of zero goes
+// by the rasterizer's top-left rule. Moving triangles of every order share it.
+bool isInsideByEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec2& ndc, const std::array<double, 3>& values);
 
 // A quadratic q(u) = a u^2 + b u + c.
 struct Quadratic {

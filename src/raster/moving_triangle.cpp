@@ -40,33 +40,8 @@ HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const 
     return fromEdges(edges, w, ndc, glm::dot(corner(0, u), edges[0]) > 0.0);
 }
 
-// Whether the sample at ndc is inside at time u, given the edge values there. An edge within
-// float precision of zero between two breaks passes through the sample all that span (a static
-// edge on a sample: the input corners are floats, so "on" cannot mean exactly zero in double).
-// Such a sample goes by the rasterizer's top-left rule (screen_triangle.cpp): to one of two
-// triangles sharing the edge, and to a lone triangle only along its top or left side (inside
-// right of the edge in raster x, or below a horizontal one).
 bool MovingTriangle::isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const {
-    constexpr double kOnEdge = 1e-6;  // relative to the edge function's terms: ~float rounding
-    std::array<bool, 3> isOn{};
-    double orientation = 0.0;
-    for (int e = 0; e < 3; ++e) {
-        const glm::dvec3 v = edgeVector(e, u);
-        const double scale = std::abs(v.x * ndc.x) + std::abs(v.y * ndc.y) + std::abs(v.z);
-        isOn[std::size_t(e)] = std::abs(values[std::size_t(e)]) <= kOnEdge * scale;
-        if (!isOn[std::size_t(e)]) {
-            if (orientation != 0.0 && (orientation > 0.0) != (values[std::size_t(e)] > 0.0)) return false;
-            orientation = values[std::size_t(e)];
-        }
-    }
-    if (orientation == 0.0) return true;  // every edge through the sample: a degenerate instant
-    for (int e = 0; e < 3; ++e) {
-        if (!isOn[std::size_t(e)]) continue;
-        // Inward gradient in NDC (y up); raster y points down.
-        const glm::dvec3 v = edgeVector(e, u) * (orientation > 0.0 ? 1.0 : -1.0);
-        if (!(v.x > 0.0 || (v.x == 0.0 && v.y < 0.0))) return false;
-    }
-    return true;
+    return isInsideByEdges({edgeVector(0, u), edgeVector(1, u), edgeVector(2, u)}, ndc, values);
 }
 
 int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,

@@ -6,6 +6,15 @@
 
 namespace streak::raster {
 
+PixelBounds pixelBoundsOfRaster(const glm::dvec2& lo, const glm::dvec2& hi, const Viewport& viewport) {
+    PixelBounds b;
+    b.x0 = int(std::clamp(std::floor(lo.x), 0.0, double(viewport.width)));
+    b.y0 = int(std::clamp(std::floor(lo.y), 0.0, double(viewport.height)));
+    b.x1 = int(std::clamp(std::floor(hi.x), -1.0, double(viewport.width - 1)));
+    b.y1 = int(std::clamp(std::floor(hi.y), -1.0, double(viewport.height - 1)));
+    return b;
+}
+
 glm::dvec2 rasterFromClip(const glm::vec4& clip, const Viewport& viewport) {
     const double invW = 1.0 / double(clip.w);
     return {(double(clip.x) * invW * 0.5 + 0.5) * viewport.width, (0.5 - double(clip.y) * invW * 0.5) * viewport.height};

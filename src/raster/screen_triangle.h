@@ -22,6 +22,10 @@ struct PixelBounds {
     bool empty() const { return x0 > x1 || y0 > y1; }
 };
 
+// The pixels holding raster points in [lo, hi] (raster coordinates: pixels, y down), clipped to
+// the viewport (a pixel's samples lie in [x, x + 1)).
+PixelBounds pixelBoundsOfRaster(const glm::dvec2& lo, const glm::dvec2& hi, const Viewport& viewport);
+
 using EdgeValues = std::array<std::int64_t, 3>;
 
 // Perspective-correct barycentrics of a sample and its 1/w (larger is nearer).

@@ -56,22 +56,56 @@ using Motion = std::function<glm::mat4(float t)>;
 
 glm::mat4 staticAt(const glm::mat4& m, float) { return m; }
 
-Mesh placeMesh(const LocalGeometry& g, std::string name, std::uint32_t material, int numKeys, const Motion& worldFromObject) {
+// How a built-in scene keys its motion: `keys` poses at evenly spaced shutter times, kept as
+// the poses (curve=linear: piecewise linear through them) or turned into the control points of
+// the one Bezier curve of order keys - 1 through them (curve=bezier, orders 2 and 3), which
+// follows a rotation far closer than the chords between the same poses.
+struct MotionKeys {
+    int count = 2;
+    MotionInterpolation curve = MotionInterpolation::PiecewiseLinear;
+};
+
+MotionKeys motionKeysOption(OptionMap& options) {
+    MotionKeys keys;
+    keys.count = options.getInt("keys", 2, 2, 64);
+    const std::string curve = options.getString("curve", "linear");
+    if (curve == "bezier") {
+        if (keys.count < 3 || keys.count > 4)
+            throw Error(options.owner() + ": curve=bezier takes keys=3 or 4 (Bezier order 2 or 3), got keys=" + std::to_string(keys.count));
+        keys.curve = MotionInterpolation::Bezier;
+    } else if (curve != "linear") {
+        throw Error(options.owner() + ": curve must be linear or bezier, got '" + curve + "'");
+    }
+    return keys;
+}
+
+// A mesh whose key poses follow worldFromObject(t): sampled at keys.count evenly spaced times,
+// which for Bezier keys become the control points of the curve through them.
+Mesh placeMesh(const LocalGeometry& g, std::string name, std::uint32_t material, MotionKeys keys, const Motion& worldFromObject) {
     Mesh mesh;
     mesh.name = std::move(name);
     mesh.material = material;
-    mesh.numKeys = numKeys;
+    mesh.numKeys = keys.count;
+    mesh.interpolation = keys.curve;
     mesh.uvs = g.uvs;
     mesh.triangles = g.triangles;
-    for (int k = 0; k < numKeys; ++k) {
-        const glm::mat4 m = worldFromObject(keyTime(k, numKeys));
+    for (int k = 0; k < keys.count; ++k) {
+        const glm::mat4 m = worldFromObject(keyTime(k, keys.count));
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
         for (std::size_t v = 0; v < g.positions.size(); ++v) {
             mesh.positions.push_back(glm::vec3(m * glm::vec4(g.positions[v], 1.0f)));
             mesh.normals.push_back(glm::normalize(normalMatrix * g.normals[v]));
         }
     }
+    if (keys.curve == MotionInterpolation::Bezier) {
+        bezierControlPointsThroughSamples(mesh.positions, keys.count);
+        bezierControlPointsThroughSamples(mesh.normals, keys.count);
+    }
     return mesh;
+}
+
+Mesh placeMesh(const LocalGeometry& g, std::string name, std::uint32_t material, int numKeys, const Motion& worldFromObject) {
+    return placeMesh(g, std::move(name), material, MotionKeys{numKeys, MotionInterpolation::PiecewiseLinear}, worldFromObject);
 }
 
 // Procedural two-colour 8-bit sRGB textures, so built-in scenes need no files: texel (x, y)
@@ -135,12 +169,12 @@ Scene defaultSceneFrame(std::string name) {
 Scene makeCubes(OptionMap& options) {
     const int n = options.getInt("n", 1000, 0, 1000000);
     const int seed = options.getInt("seed", 1, 0, 1 << 30);
-    const int keys = options.getInt("keys", 2, 2, 64);
+    const MotionKeys keys = motionKeysOption(options);
     // Each cube pose is 24 vertices: two million poses are about 2 GB of scene.
     constexpr long long kMaxCubePoses = 2000000;
-    if (static_cast<long long>(n) * keys > kMaxCubePoses)
+    if (static_cast<long long>(n) * keys.count > kMaxCubePoses)
         throw Error("scene 'cubes': n * keys must be at most " + std::to_string(kMaxCubePoses) + ", got " + std::to_string(n) + " * " +
-                    std::to_string(keys));
+                    std::to_string(keys.count));
     Scene scene = defaultSceneFrame("cubes");
     scene.textures.push_back(checkerTexture(128, 8, {235, 235, 235}, {60, 60, 60}));
     scene.textures.push_back(gridTexture(128, 4, {230, 230, 230}, {30, 30, 30}));
@@ -177,19 +211,21 @@ Scene makeCubes(OptionMap& options) {
     return scene;
 }
 
+// speed scales the rotation (speed=4: 160, 200 and 120 degrees about x, y and z in the shutter).
 Scene makeRotatingCube(OptionMap& options) {
-    const int keys = options.getInt("keys", 2, 2, 64);
+    const MotionKeys keys = motionKeysOption(options);
+    const float speed = float(options.getDouble("speed", 1.0, 0.0, 100.0));
     Scene scene = defaultSceneFrame("rotating-cube");
     scene.textures.push_back(checkerTexture(256, 8, {240, 240, 240}, {200, 40, 40}));
     scene.materials.push_back(texturedMaterial("checker", glm::vec3(1.0f), 0));
     setStaticCamera(scene, glm::vec3(0.0f, 0.0f, 6.0f), glm::vec3(0.0f));
     LocalGeometry cube;
     cube.addBox(glm::vec3(0.0f), glm::vec3(1.0f));
-    const Motion motion = [](float t) {
+    const Motion motion = [speed](float t) {
         glm::mat4 m(1.0f);
-        m = glm::rotate(m, glm::radians(20.0f + 40.0f * t), glm::vec3(1, 0, 0));
-        m = glm::rotate(m, glm::radians(30.0f + 50.0f * t), glm::vec3(0, 1, 0));
-        return glm::rotate(m, glm::radians(10.0f + 30.0f * t), glm::vec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(20.0f + 40.0f * speed * t), glm::vec3(1, 0, 0));
+        m = glm::rotate(m, glm::radians(30.0f + 50.0f * speed * t), glm::vec3(0, 1, 0));
+        return glm::rotate(m, glm::radians(10.0f + 30.0f * speed * t), glm::vec3(0, 0, 1));
     };
     scene.meshes.push_back(placeMesh(cube, "cube", 0, keys, motion));
     return scene;
@@ -341,14 +377,126 @@ Scene makeTranslucent(OptionMap&) {
     return scene;
 }
 
+// Gribel et al. 2013's first figure: a textured triangle and a textured quad, each turning by
+// `angle` degrees (120) about the view axis through its centre within the shutter, over a
+// static backdrop. Linear keys skew them: their corners cut the chords of circles.
+Scene makeSpin(OptionMap& options) {
+    const MotionKeys keys = motionKeysOption(options);
+    const float angle = glm::radians(float(options.getDouble("angle", 120.0, 0.0, 720.0)));
+    Scene scene = defaultSceneFrame("spin");
+    scene.textures.push_back(checkerTexture(256, 8, {245, 215, 60}, {40, 50, 150}));
+    scene.textures.push_back(stripeTexture(256, 8, {240, 240, 240}, {200, 50, 40}));
+    scene.textures.push_back(gridTexture(128, 8, {110, 115, 125}, {55, 58, 66}));
+    scene.materials = {texturedMaterial("triangle", glm::vec3(1.0f), 0), texturedMaterial("quad", glm::vec3(1.0f), 1),
+                       texturedMaterial("backdrop", glm::vec3(1.0f), 2)};
+    for (int i = 0; i < 2; ++i) scene.materials[std::size_t(i)].doubleSided = true;
+    setStaticCamera(scene, glm::vec3(0.0f, 0.0f, 6.0f), glm::vec3(0.0f));
+    scene.meshes.push_back(backdrop(glm::vec3(0.0f, 0.0f, -1.5f), 6.0f, 4.5f, 2, 3.0f));
+    LocalGeometry triangle;
+    triangle.positions = {{-1.2f, -0.8f, 0.0f}, {1.2f, -0.8f, 0.0f}, {0.0f, 1.3f, 0.0f}};
+    triangle.normals.assign(3, glm::vec3(0, 0, 1));
+    triangle.uvs = {{0.0f, 1.0f}, {1.0f, 1.0f}, {0.5f, 0.0f}};
+    triangle.triangles = {{0, 1, 2}};
+    const auto turning = [angle](glm::vec3 centre, float start) {
+        return [=](float t) {
+            return glm::rotate(glm::translate(glm::mat4(1.0f), centre), start + angle * t, glm::vec3(0, 0, 1));
+        };
+    };
+    scene.meshes.push_back(placeMesh(triangle, "triangle", 0, keys, turning(glm::vec3(-1.35f, 0.0f, 0.0f), 0.0f)));
+    LocalGeometry quad;
+    quad.addQuad(glm::vec3(0.0f), glm::vec3(0.9f, 0, 0), glm::vec3(0, 0.5f, 0));
+    scene.meshes.push_back(placeMesh(quad, "quad", 1, keys, turning(glm::vec3(1.5f, 0.0f, 0.3f), 0.3f)));
+    return scene;
+}
+
+// A cloth sheet swung fast around a ball (after the UNC clothball): a grid of cells x cells
+// quads wrapped on a cylinder about the ball's vertical axis, sweeping `angle` degrees (150)
+// around it while closing in from 1.9 to 1.15 radii, wrapping tighter and shrinking in height.
+// Every vertex moves on a curve; linear keys cut towards the ball.
+Scene makeClothball(OptionMap& options) {
+    const MotionKeys keys = motionKeysOption(options);
+    const int cells = options.getInt("cells", 24, 1, 256);
+    const float sweep = glm::radians(float(options.getDouble("angle", 150.0, 0.0, 720.0)));
+    Scene scene = defaultSceneFrame("clothball");
+    scene.textures.push_back(checkerTexture(256, 8, {235, 235, 225}, {170, 40, 60}));
+    scene.textures.push_back(gridTexture(128, 8, {90, 140, 200}, {30, 50, 90}));
+    Material cloth = texturedMaterial("cloth", glm::vec3(1.0f), 0);
+    cloth.doubleSided = true;
+    scene.materials = {cloth, texturedMaterial("ball", glm::vec3(1.0f), 1)};
+    setStaticCamera(scene, glm::vec3(0.0f, 0.6f, 5.5f), glm::vec3(0.0f));
+
+    // The ball: a static UV sphere of radius 1.
+    LocalGeometry ball;
+    const int rings = 24, slices = 48;
+    for (int r = 0; r <= rings; ++r)
+        for (int k = 0; k <= slices; ++k) {
+            const float theta = kPi * float(r) / float(rings), phi = 2.0f * kPi * float(k) / float(slices);
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+            ball.positions.push_back(n), ball.normals.push_back(n);
+            ball.uvs.push_back({float(k) / float(slices) * 4.0f, float(r) / float(rings) * 2.0f});
+        }
+    for (int r = 0; r < rings; ++r)
+        for (int k = 0; k < slices; ++k) {
+            const auto a = std::uint32_t(r * (slices + 1) + k), b = a + 1, c = a + std::uint32_t(slices + 1), d = c + 1;
+            if (r > 0) ball.triangles.push_back({a, c, b});  // the poles' rings meet in a point
+            if (r + 1 < rings) ball.triangles.push_back({b, c, d});
+        }
+    scene.meshes.push_back(placeMesh(ball, "ball", 1, 2, [](float t) { return staticAt(glm::mat4(1.0f), t); }));
+
+    // The sheet, deforming: each vertex is a function of its grid point and t.
+    Mesh sheet;
+    sheet.name = "cloth";
+    sheet.material = 0;
+    sheet.numKeys = keys.count;
+    sheet.interpolation = keys.curve;
+    const int side = cells + 1;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) sheet.uvs.push_back({float(i) / float(cells), float(j) / float(cells)});
+    for (int j = 0; j < cells; ++j)
+        for (int i = 0; i < cells; ++i) {
+            const auto a = std::uint32_t(j * side + i), b = a + 1, c = a + std::uint32_t(side), d = c + 1;
+            sheet.triangles.push_back({a, b, d});
+            sheet.triangles.push_back({a, d, c});
+        }
+    const auto clothAt = [&](float a, float b, float t) {
+        const float radius = 1.9f - 0.75f * t;
+        const float phi = -0.9f + sweep * t + (a - 0.5f) * 1.6f * (1.2f - 0.4f * t);
+        const float y = (0.5f - b) * 1.5f * (1.0f - 0.3f * t);
+        return glm::vec3(radius * std::sin(phi), y, radius * std::cos(phi));
+    };
+    std::vector<glm::vec3> samples;
+    for (int k = 0; k < keys.count; ++k)
+        for (int j = 0; j < side; ++j)
+            for (int i = 0; i < side; ++i) samples.push_back(clothAt(float(i) / float(cells), float(j) / float(cells), keyTime(k, keys.count)));
+    // Normals from the grid's central differences at each key.
+    for (int k = 0; k < keys.count; ++k)
+        for (int j = 0; j < side; ++j)
+            for (int i = 0; i < side; ++i) {
+                const auto at = [&](int x, int y) {
+                    return samples[std::size_t(k) * side * side + std::size_t(std::clamp(y, 0, cells)) * side + std::size_t(std::clamp(x, 0, cells))];
+                };
+                const glm::vec3 n = glm::cross(at(i + 1, j) - at(i - 1, j), at(i, j - 1) - at(i, j + 1));
+                sheet.normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 0, 1));
+            }
+    sheet.positions = samples;
+    if (keys.curve == MotionInterpolation::Bezier) {
+        bezierControlPointsThroughSamples(sheet.positions, keys.count);
+        bezierControlPointsThroughSamples(sheet.normals, keys.count);
+    }
+    scene.meshes.push_back(std::move(sheet));
+    return scene;
+}
+
 struct BuiltinScene {
     BuiltinSceneInfo info;
     Scene (*make)(OptionMap&);
 };
 
-const std::array<BuiltinScene, 7> kScenes{{
-    {{"cubes", "n random textured cubes moving and rotating (Hong & Oh); options n=1000, seed=1, keys=2"}, makeCubes},
-    {{"rotating-cube", "one textured cube rotating about x, y and z; option keys=2"}, makeRotatingCube},
+const std::array<BuiltinScene, 9> kScenes{{
+    {{"cubes", "n random textured cubes moving and rotating (Hong & Oh); options n=1000, seed=1, keys=2, curve=linear"}, makeCubes},
+    {{"rotating-cube", "one textured cube rotating about x, y and z; options keys=2, curve=linear, speed=1"}, makeRotatingCube},
+    {{"spin", "a textured triangle and quad turning about the view axis (Gribel 2013); options angle=120, keys=2, curve=linear"}, makeSpin},
+    {{"clothball", "a cloth sheet swung fast around a ball, closing in; options cells=24, angle=150, keys=2, curve=linear"}, makeClothball},
     {{"crossing", "two triangles passing through each other in depth"}, makeCrossing},
     {{"twist", "a triangle flipping over, its t=0 and t=1 projections crossing"}, makeTwist},
     {{"fence", "thin bars moving fast over a textured wall; options bars=12, travel=0.3"}, makeFence},

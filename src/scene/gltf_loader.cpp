@@ -147,6 +147,9 @@ private:
         if (!(o.fps > 0.0) || !std::isfinite(o.fps)) throw Error("--fps must be positive");
         if (o.motionKeys != 0 && (o.motionKeys < 2 || o.motionKeys > kMaxMotionKeys))
             throw Error("--motion-keys must be in [2, " + str(kMaxMotionKeys) + "], got " + str(o.motionKeys));
+        if (o.motionCurve == MotionInterpolation::Bezier && o.motionKeys != 3 && o.motionKeys != 4)
+            throw Error("--motion-curve bezier takes --motion-keys 3 or 4 (Bezier order 2 or 3), got " +
+                        (o.motionKeys == 0 ? std::string("none") : str(o.motionKeys)));
         if (!(o.keyTolerancePixels > 0.0) || !std::isfinite(o.keyTolerancePixels)) throw Error("--key-tolerance must be a positive number of pixels");
         if (o.imageHeight < 1) throw Error("the image height must be positive");
         if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
@@ -679,6 +682,11 @@ private:
             for (const PosedInstances& key : keys) {
                 mesh.positions.insert(mesh.positions.end(), key.positions[i].begin(), key.positions[i].end());
                 if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i].begin(), key.normals[i].end());
+            }
+            if (m_options.motionCurve == MotionInterpolation::Bezier) {
+                mesh.interpolation = MotionInterpolation::Bezier;
+                bezierControlPointsThroughSamples(mesh.positions, numKeys);
+                bezierControlPointsThroughSamples(mesh.normals, numKeys);
             }
             mesh.uvs = data.uvs;
             mesh.colors = data.colors;

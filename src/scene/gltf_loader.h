@@ -44,6 +44,8 @@ struct GltfOptions {
     std::string animation;      ///< a name, or an index; empty: the first animation, if any
     int motionKeys = 0;         ///< key poses sampled evenly over the shutter, 2 to 256; 0: chosen
                                 ///< per scene (2, 3, 5, 9...) to follow the animation on screen
+    MotionInterpolation motionCurve = MotionInterpolation::PiecewiseLinear;  ///< Bezier: the keys become the control
+                                ///< points of the curve through the motionKeys (3 or 4) samples
     double keyTolerancePixels = 0.125;  ///< chosen keys: the screen deviation they may leave
     int maxMotionKeys = 33;             ///< chosen keys: at most this many
     int imageHeight = 768;              ///< pixels, the unit of keyTolerancePixels

@@ -1,7 +1,10 @@
 #include "scene/motion.h"
 
+#include "raster/bernstein.h"
+
 #include <algorithm>
 #include <cassert>
+#include <vector>
 
 namespace streak {
 
@@ -34,6 +37,19 @@ MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, floa
         }
     }
     return w;
+}
+
+void bezierControlPointsThroughSamples(std::span<glm::vec3> keys, int numKeys) {
+    assert(numKeys >= 2 && numKeys <= 4 && keys.size() % std::size_t(numKeys) == 0);
+    const std::size_t n = keys.size() / std::size_t(numKeys);
+    const auto weights = raster::bezierThroughSamples(numKeys - 1);
+    const std::vector<glm::vec3> samples(keys.begin(), keys.end());
+    for (int j = 0; j < numKeys; ++j)
+        for (std::size_t v = 0; v < n; ++v) {
+            glm::vec3 p(0.0f);
+            for (int i = 0; i < numKeys; ++i) p += float(weights[std::size_t(j)][std::size_t(i)]) * samples[std::size_t(i) * n + v];
+            keys[std::size_t(j) * n + v] = p;
+        }
 }
 
 }  // namespace streak

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace streak {
 
@@ -43,6 +44,12 @@ struct MotionWeights {
 // The weights for numKeys keys at shutter time t (clamped to [0,1]). Precondition: numKeys >= 2,
 // and numKeys <= MotionWeights::kMaxKeys for Bezier.
 MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t);
+
+// Replaces samples of curves at the key times (key-major: numKeys blocks of equal size, as
+// Mesh::positions) by the control points of the Bezier curves of order numKeys - 1 through
+// them (raster::bezierThroughSamples). Linear in the samples, so it converts positions and
+// normals alike. numKeys <= 4.
+void bezierControlPointsThroughSamples(std::span<glm::vec3> keys, int numKeys);
 
 // Shutter time of key k of numKeys (uniform spacing).
 inline float keyTime(int k, int numKeys) { return float(k) / float(numKeys - 1); }

@@ -74,8 +74,8 @@ TEST(Cli, ScenesListsEveryBuiltinSceneOnePerLine) {
     test::TempDir dir;
     const RunResult r = runStreak(dir, "scenes");
     EXPECT_EQ(r.exitCode, 0);
-    EXPECT_EQ(countLines(r.out), 7);
-    for (const char* name : {"cubes", "rotating-cube", "crossing", "twist", "fence", "pan", "translucent"})
+    EXPECT_EQ(countLines(r.out), 9);
+    for (const char* name : {"cubes", "rotating-cube", "spin", "clothball", "crossing", "twist", "fence", "pan", "translucent"})
         EXPECT_NE(r.out.find(std::string("builtin:") + name + " "), std::string::npos) << name;
 }
 

@@ -16,7 +16,7 @@ namespace streak {
 
 namespace {
 
-const char* const kMethods[] = {"accumulation", "stochastic", "motion-path", "analytic"};
+const char* const kMethods[] = {"accumulation", "stochastic", "motion-path", "analytic", "higher-order"};
 
 OptionMap optionsFor(const std::string& method) {
     return method == "accumulation" || method == "stochastic" ? test::withOption("samples", "1") : OptionMap();

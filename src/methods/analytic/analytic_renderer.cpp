@@ -1,9 +1,10 @@
 #include "methods/analytic/analytic_renderer.h"
 
+#include "exposure/sample_resolve.h"
+#include "exposure/tile_pass.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/triangle_surface_point.h"
-#include "exposure/visible_pieces.h"
-#include "methods/analytic/exposure_interval.h"
+#include "exposure/exposure_interval.h"
 #include "raster/moving_triangle.h"
 #include "raster/tile_grid.h"
 #include "util/error.h"
@@ -21,13 +22,13 @@ namespace streak {
 
 namespace {
 
-using analytic::ExposureInterval;
+using exposure::ExposureInterval;
 
 constexpr int kTileSize = 16;
 
 struct Options {
     int maxIntervals = 0;  ///< 0: unlimited
-    analytic::OracleWeights oracle;
+    exposure::OracleWeights oracle;
     bool tileCull = true;
     bool checkDepthOrder = false;
     int textureSamples = 32;
@@ -42,19 +43,17 @@ struct Record {
 };
 
 struct Counters {
-    std::int64_t intervals = 0, maxIntervals = 0, merges = 0, culledBackFacing = 0, tileTests = 0, tilesCulled = 0,
-                 shadedSpans = 0, compressedSamples = 0, maxResolved = 0;
+    std::int64_t culledBackFacing = 0, tileTests = 0, tilesCulled = 0;
     raster::RootCaseCounts roots;
-    double misorderedTime = 0.0, coveredPairTime = 0.0;
-    double intervalSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
+    double intervalSeconds = 0;
+    exposure::SampleResolveCounters resolve;
 };
 
 struct TileScratch {
     std::vector<Record> records, bySample;
     std::vector<std::uint32_t> runs;
     std::vector<ExposureInterval> list;
-    std::vector<float> weights;
-    std::vector<exposure::VisiblePiece> pieces;
+    exposure::SampleResolveScratch resolve;
     std::vector<glm::vec3> color;
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's segments' edge equations
     Counters counters;
@@ -90,61 +89,38 @@ public:
             frame.computeBounds();
         }
         raster::TileGrid grid(viewport, kTileSize);
-        {
-            PhaseTimer timer(context.stats, "bin");
-            grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
-        }
-        std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
         tbb::enumerable_thread_specific<TileScratch> scratch;
-        {
-            PhaseTimer timer(context.stats, "tiles");
-            grid.forEachTile([&](int tile) { renderTile(frame, grid, tile, scratch.local(), image); }, /*includeEmpty=*/true);
-        }
-        if (context.progress) context.progress->update(1.0);
+        const std::vector<glm::vec3> image = exposure::runTilePass(
+            grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
+            context.progress, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) { renderTile(frame, grid, tile, local, pixels); });
 
         Counters total;
         for (const TileScratch& s : scratch) {
             const Counters& c = s.counters;
-            total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
-            total.merges += c.merges, total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests;
-            total.tilesCulled += c.tilesCulled, total.shadedSpans += c.shadedSpans, total.compressedSamples += c.compressedSamples;
-            total.maxResolved = std::max(total.maxResolved, c.maxResolved);
+            total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests, total.tilesCulled += c.tilesCulled;
             total.roots.add(c.roots);
-            total.misorderedTime += c.misorderedTime, total.coveredPairTime += c.coveredPairTime;
-            total.intervalSeconds += c.intervalSeconds, total.resolveSeconds += c.resolveSeconds, total.shadeSeconds += c.shadeSeconds;
+            total.intervalSeconds += c.intervalSeconds;
+            total.resolve.add(c.resolve);
         }
         RenderStats& stats = context.stats;
-        // Tile work runs on all threads at once: split the tiles' wall time by thread time.
-        const double threadTime = total.intervalSeconds + total.resolveSeconds + total.shadeSeconds;
-        const double scale = threadTime > 0.0 ? stats.time("tiles") / threadTime : 0.0;
-        stats.addTime("intervals", total.intervalSeconds * scale);
-        stats.addTime("resolve", total.resolveSeconds * scale);
-        stats.addTime("shade", total.shadeSeconds * scale);
-
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, m_options.maxIntervals);
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
         stats.setCounter("backface_intervals_culled", double(total.culledBackFacing));
-        stats.setCounter("intervals", double(total.intervals));
-        stats.setCounter("intervals_per_sample_mean", double(total.intervals) / numSamples);
-        stats.setCounter("intervals_per_sample_max", double(total.maxIntervals));
-        stats.setCounter("max_intervals", m_options.maxIntervals);
-        stats.setCounter("compressed_samples", double(total.compressedSamples));
-        stats.setCounter("resolved_intervals_max", double(total.maxResolved));
-        stats.setCounter("merges", double(total.merges));
         stats.setCounter("tile_tests", double(total.tileTests));
         stats.setCounter("tiles_culled", double(total.tilesCulled));
-        stats.setCounter("shaded_spans", double(total.shadedSpans));
         stats.setCounter("roots_constant", double(total.roots.constant));
         stats.setCounter("roots_linear", double(total.roots.linear));
         stats.setCounter("roots_none", double(total.roots.noRealRoot));
         stats.setCounter("roots_double", double(total.roots.doubleRoot));
         stats.setCounter("roots_two", double(total.roots.twoRoots));
         if (m_options.checkDepthOrder) {
-            stats.setCounter("depth_overlap_time", total.coveredPairTime);
-            stats.setCounter("depth_misordered_time", total.misorderedTime);
-            stats.setCounter("depth_misordered_fraction", total.coveredPairTime > 0.0 ? total.misorderedTime / total.coveredPairTime : 0.0);
+            const exposure::SampleResolveCounters& r = total.resolve;
+            stats.setCounter("depth_overlap_time", r.coveredPairTime);
+            stats.setCounter("depth_misordered_time", r.misorderedTime);
+            stats.setCounter("depth_misordered_fraction", r.coveredPairTime > 0.0 ? r.misorderedTime / r.coveredPairTime : 0.0);
         }
 
         Image result(settings.width, settings.height);
@@ -251,87 +227,31 @@ private:
                     }
         }
         raster::groupBySample(std::span<const Record>(scratch.records), numSamples, scratch.runs, scratch.bySample);
-        const std::vector<std::uint32_t>& runs = scratch.runs;
         counters.intervalSeconds += secondsSince(start);
 
-        // Per sample: shade what must be known before the resolve (translucent opacity; every
-        // colour when compressing, for the oracle), compress, resolve exactly, shade what shows.
-        scratch.color.resize(numSamples);
-        const int budget = frame.options.maxIntervals;
-        for (std::size_t i = 0; i < numSamples; ++i) {
-            const std::uint32_t begin = runs[i], end = runs[i + 1];
-            if (begin == end) {
-                scratch.color[i] = scene.background;
-                continue;
-            }
-            start = Clock::now();
-            const int pixel = int(i / spp);
-            const glm::dvec2 ndc = frame.pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), width, height);
-            std::vector<ExposureInterval>& list = scratch.list;
-            list.clear();
-            for (std::uint32_t k = begin; k < end; ++k) list.push_back(scratch.bySample[k].interval);
-            counters.intervals += std::int64_t(list.size());
-            counters.maxIntervals = std::max(counters.maxIntervals, std::int64_t(list.size()));
-            const bool isCompressing = budget > 0 && int(list.size()) > budget;
-            for (ExposureInterval& interval : list) {
-                const std::uint32_t triangle = segments[interval.source].triangle;
-                if (isCompressing || scene.materials[triangles[triangle].material].isTranslucent()) shade(frame, interval, ndc, scratch.movingTriangles);
-            }
-            if (isCompressing) {
-                ++counters.compressedSamples;
-                counters.merges += analytic::compressIntervals(list, budget, frame.options.oracle);
-            }
-            counters.maxResolved = std::max(counters.maxResolved, std::int64_t(list.size()));
-            scratch.weights.resize(list.size());
-            const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
-            float backgroundWeight = 0.0f;
-            if (hasTranslucency) {
-                backgroundWeight = analytic::resolveTranslucent(list, scratch.weights);
-            } else if (frame.options.checkDepthOrder) {
-                const analytic::ExactDepth exactDepth = [&](std::size_t k, float t) {
+        // Per sample: resolve the intervals exactly and shade what shows (exposure::resolveSample).
+        exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
+                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
+                              [&](const glm::dvec2& ndc, std::vector<ExposureInterval>& list) {
+            std::optional<exposure::ExactDepth> exactDepth;
+            if (frame.options.checkDepthOrder)
+                exactDepth = [&](std::size_t k, float t) {
                     const exposure::TriangleSegment& s = segments[list[k].source];
                     return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
                 };
-                backgroundWeight =
-                    analytic::resolveOpaque(list, scratch.weights, &exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
-            } else {
-                backgroundWeight = analytic::resolveOpaque(list, scratch.weights);
-            }
-            const auto resolved = Clock::now();
-            counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
-
-            glm::vec3 sum = scene.background * backgroundWeight;
-            scratch.pieces.clear();
-            for (std::size_t k = 0; k < list.size(); ++k) {
-                if (scratch.weights[k] <= 0.0f) continue;
-                if (list[k].isShaded) {
-                    sum += list[k].color * scratch.weights[k];
-                    continue;
-                }
-                const bool isWhole = scratch.weights[k] >= list[k].duration() * (1.0f - 1e-5f);
-                scratch.pieces.push_back({segments[list[k].source].triangle, list[k].t0, list[k].t1, scratch.weights[k], isWhole});
-            }
-            exposure::mergeAbuttingPieces(scratch.pieces);
-            for (const exposure::VisiblePiece& piece : scratch.pieces)
-                sum += shadeSpan(frame, piece.triangle, piece.t0, piece.t1, ndc, scratch.movingTriangles).color * piece.weight;
-            counters.shadedSpans += std::int64_t(scratch.pieces.size());
-            scratch.color[i] = sum;
-            counters.shadeSeconds += secondsSince(resolved);
-        }
-        for (int py = rect.y0; py <= rect.y1; ++py)
-            for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * width + px] = glm::vec3(0.0f);
-        raster::addTileToImage(rect, spp, scratch.color, 1.0f, image, width);
+            return exposure::resolveSample(
+                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, scene.background,
+                [&](std::uint32_t source) { return segments[source].triangle; },
+                [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
+                [&](std::uint32_t triangle, float t0, float t1) { return shadeSpan(frame, triangle, t0, t1, ndc, scratch.movingTriangles); },
+                scratch.resolve, counters.resolve);
+        });
     }
 
     ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
                           exposure::MovingTriangleCache& cache) const {
         return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc,
                                            cache);
-    }
-
-    void shade(const Frame& frame, ExposureInterval& interval, const glm::dvec2& ndc, exposure::MovingTriangleCache& cache) const {
-        const ShadedColor c = shadeSpan(frame, frame.segmented->segments()[interval.source].triangle, interval.t0, interval.t1, ndc, cache);
-        interval.color = c.color, interval.alpha = c.alpha, interval.isShaded = true;
     }
 
     Options m_options;

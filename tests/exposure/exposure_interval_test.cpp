@@ -1,8 +1,8 @@
-#include "methods/analytic/exposure_interval.h"
+#include "exposure/exposure_interval.h"
 
 #include <gtest/gtest.h>
 
-namespace streak::analytic {
+namespace streak::exposure {
 
 namespace {
 
@@ -101,4 +101,4 @@ TEST(Resolve, TranslucentHandMadeLists) {
     EXPECT_NEAR(w[0], 0.2f, 1e-6f);
 }
 
-}  // namespace streak::analytic
+}  // namespace streak::exposure

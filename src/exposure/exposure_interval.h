@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-namespace streak::analytic {
+namespace streak::exposure {
 
 // ExposureInterval is a time span over which one triangle covers a pixel sample exactly (Gribel
 // et al. 2010): its ends are roots of the moving edge equations. Depth over it is taken as
@@ -61,4 +61,4 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
                     double* misorderedTime = nullptr, double* overlapTime = nullptr);
 float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights);
 
-}  // namespace streak::analytic
+}  // namespace streak::exposure

@@ -1,4 +1,4 @@
-#include "methods/analytic/exposure_interval.h"
+#include "exposure/exposure_interval.h"
 
 #include <glm/common.hpp>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace streak::analytic {
+namespace streak::exposure {
 
 namespace {
 
@@ -131,4 +131,4 @@ float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<
     return background;
 }
 
-}  // namespace streak::analytic
+}  // namespace streak::exposure

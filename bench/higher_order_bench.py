@@ -1,0 +1,134 @@
+#!/usr/bin/python3
+"""The higher-order motion (Gribel et al. 2013) figures of docs/BENCHMARKS.md.
+
+Sections (all by default, or pick with --sections):
+  quality    spin, clothball and rotating-cube?speed=4 at 256x192, unlit, --aa 2, against
+             accumulation (--samples 3000) of the true motion (keys=64): PSNR and visibility
+             accuracy of analytic on linear keys (2, 3, 5, 9 keys) and of higher-order on the
+             quadratic (keys=3 curve=bezier) and cubic (keys=4) through the same poses.
+  gltf       The skinned models at long shutters (CesiumMan over 6 frames, Fox running over 4),
+             320x240, against accumulation 3000 of 64 keys: analytic on 2, 3, 5 and 9 linear keys,
+             higher-order on --motion-curve bezier with 3 and 4 keys (the curve through the
+             animation at 3 or 4 times).
+  traversal  The paper's tables on the curved scenes (keys=3 curve=bezier): sample test
+             efficiency and time of bounding-box traversal and generalized INTERVAL with 4, 16
+             and 64 sub-intervals.
+  solvers    Closed form against Bezier clipping: time and agreement (PSNR between them).
+  speed      Time per frame at 1024x768 of higher-order against analytic with the same poses
+             (3 keys), on spin and clothball.
+
+Times are the "render" phase of --stats, the least of --repeats runs.
+
+usage: bench/higher_order_bench.py [--streak build/streak] [--sections quality,gltf,traversal,solvers,speed] [--repeats 3]
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchlib import run_sections  # noqa: E402
+
+CURVED = ["spin", "clothball", "rotating-cube?speed=4"]
+FLAGS = ["--aa", "2", "--shading", "unlit"]
+
+
+def scene(name, keys, curve="linear"):
+    return f"builtin:{name}{'&' if '?' in name else '?'}keys={keys}&curve={curve}"
+
+
+def reference(streak, name):
+    path = os.path.join(streak.tmp, name.replace("?", "_").replace("=", "_") + "-truth.exr")
+    if not os.path.exists(path):
+        streak.render(scene(name, 64), "accumulation", path, args=["--samples", "3000", *FLAGS], repeats=1)
+    return path
+
+
+def quality(streak, args):
+    print("### Curved motion against its true path (256x192, unlit, --aa 2; reference: accumulation 3000 of keys=64)\n")
+    print("| scene | analytic 2 keys | analytic 3 | analytic 5 | analytic 9 | higher-order n=2 (3 keys) | higher-order n=3 (4 keys) | visibility accuracy n=2 |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    out = os.path.join(streak.tmp, "q.exr")
+    for name in CURVED:
+        ref = reference(streak, name)
+        row = []
+        for keys in (2, 3, 5, 9):
+            streak.render(scene(name, keys), "analytic", out, args=FLAGS, repeats=1)
+            row.append(f"{streak.psnr(ref, out):.1f} dB")
+        for keys in (3, 4):
+            _, stats = streak.render(scene(name, keys, "bezier"), "higher-order", out, args=[*FLAGS, "--option", "check-visibility=20000"], repeats=1)
+            row.append(f"{streak.psnr(ref, out):.1f} dB")
+            if keys == 3:
+                accuracy = stats["counters"]["visibility_accuracy"]
+        print(f"| {name} | " + " | ".join(row) + f" | {100 * accuracy:.2f}% |", flush=True)
+    print()
+
+
+MODELS = [
+    ("CesiumMan", "CesiumMan/glTF-Binary/CesiumMan.glb", ["--frame", "12", "--shutter", "6"]),
+    ("Fox (Run)", "Fox/glTF-Binary/Fox.glb", ["--frame", "10", "--shutter", "4", "--animation", "Run"]),
+]
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
+
+
+def gltf(streak, args):
+    print("### Skinned models at long shutters (320x240, unlit, --aa 2; reference: accumulation 3000 of 64 keys)\n")
+    print("| model | analytic 2 keys | analytic 3 | analytic 5 | analytic 9 | higher-order n=2 (3 keys) | higher-order n=3 (4 keys) |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    out, ref = os.path.join(streak.tmp, "g.exr"), os.path.join(streak.tmp, "g-ref.exr")
+    for name, path, flags in MODELS:
+        model = os.path.join(SCENES, path)
+        streak.render(model, "accumulation", ref, size="320x240", args=[*flags, *FLAGS, "--samples", "3000", "--motion-keys", "64"], repeats=1)
+        row = []
+        for keys in (2, 3, 5, 9):
+            streak.render(model, "analytic", out, size="320x240", args=[*flags, *FLAGS, "--motion-keys", str(keys)], repeats=1)
+            row.append(f"{streak.psnr(ref, out):.1f} dB")
+        for keys in (3, 4):
+            streak.render(model, "higher-order", out, size="320x240",
+                          args=[*flags, *FLAGS, "--motion-keys", str(keys), "--motion-curve", "bezier"], repeats=1)
+            row.append(f"{streak.psnr(ref, out):.1f} dB")
+        print(f"| {name} | " + " | ".join(row) + " |", flush=True)
+    print()
+
+
+def traversal(streak, args):
+    print("### Traversal: sample test efficiency and time (256x192, unlit, --aa 2, keys=3 curve=bezier)\n")
+    options = ["traversal=bbox", "intervals=4", "intervals=16", "intervals=64", "traversal=tile&tile=4", "traversal=tile&tile=2",
+               "traversal=tile&tile=1"]
+    print("| scene | bbox STE | ms | INTERVAL 4 STE | ms | INTERVAL 16 STE | ms | INTERVAL 64 STE | ms | TILE 4x4 STE | ms | TILE 2x2 STE | ms | TILE 1x1 STE | ms |")
+    print("|---|" + "---:|" * (2 * len(options)))
+    out = os.path.join(streak.tmp, "t.exr")
+    for name in CURVED:
+        row = []
+        for combined in options:
+            option = [a for pair in combined.split("&") for a in ("--option", pair)]
+            ms, stats = streak.render(scene(name, 3, "bezier"), "higher-order", out, args=[*FLAGS, *option])
+            row += [f"{100 * stats['counters']['sample_test_efficiency']:.1f}%", f"{ms:.0f}"]
+        print(f"| {name} | " + " | ".join(row) + " |", flush=True)
+    print()
+
+
+def solvers(streak, args):
+    print("### Root solvers: closed form (Ferrari) against Bezier clipping (256x192, unlit, --aa 2, keys=3 curve=bezier)\n")
+    print("| scene | closed form ms | clipping ms | PSNR between them |")
+    print("|---|---:|---:|---:|")
+    a, b = os.path.join(streak.tmp, "a.exr"), os.path.join(streak.tmp, "b.exr")
+    for name in CURVED:
+        closed, _ = streak.render(scene(name, 3, "bezier"), "higher-order", a, args=[*FLAGS, "--option", "solver=closed-form"])
+        clipping, _ = streak.render(scene(name, 3, "bezier"), "higher-order", b, args=[*FLAGS, "--option", "solver=clipping"])
+        print(f"| {name} | {closed:.0f} | {clipping:.0f} | {streak.psnr(a, b):.1f} dB |", flush=True)
+    print()
+
+
+def speed(streak, args):
+    print("### Time per frame at 1024x768 (phong, --aa 1): higher-order against analytic on the same 3 poses\n")
+    print("| scene | analytic (3 linear keys) ms | higher-order (n=2) ms | ratio |")
+    print("|---|---:|---:|---:|")
+    out = os.path.join(streak.tmp, "s.exr")
+    for name in ["spin", "clothball"]:
+        an, _ = streak.render(scene(name, 3), "analytic", out, size="1024x768")
+        ho, _ = streak.render(scene(name, 3, "bezier"), "higher-order", out, size="1024x768")
+        print(f"| {name} | {an:.0f} | {ho:.0f} | {ho / an:.2f} |", flush=True)
+    print()
+
+
+if __name__ == "__main__":
+    run_sections({"quality": quality, "gltf": gltf, "traversal": traversal, "solvers": solvers, "speed": speed}, default_plot="")

@@ -1,0 +1,43 @@
+#pragma once
+
+#include "exposure/curved_geometry.h"
+#include "exposure/triangle_cache.h"
+#include "raster/curved_triangle.h"
+#include "raster/screen_triangle.h"
+#include "scene/span_shading.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+
+namespace streak::exposure {
+
+using CurvedTriangleCache = TriangleCache<raster::CurvedTriangle>;
+
+// Each curved segment's edge equations, from the cache.
+const raster::CurvedTriangle& curvedTriangleOf(const CurvedGeometry& geometry, std::uint32_t segment, CurvedTriangleCache& cache);
+
+// A triangle on curved paths under one pixel sample at any time of the shutter, for span
+// shading along the curved uv path: exact barycentrics from the curved edge equations of the
+// piece holding that time, world position and normal from the world-space control points.
+class CurvedSurfacePoint final : public MovingSurfacePoint {
+public:
+    // samplesPerAxis: the --aa N whose sample spacing is the texture footprint.
+    CurvedSurfacePoint(const CurvedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis, std::uint32_t triangle,
+                       const glm::dvec2& ndc, CurvedTriangleCache& cache);
+
+    bool at(float t, bool withFootprint, SurfacePoint& out) const override;
+
+private:
+    const CurvedGeometry& m_geometry;
+    glm::dvec2 m_step;  ///< one sample spacing in NDC
+    std::uint32_t m_triangle;
+    glm::dvec2 m_ndc;
+    CurvedTriangleCache& m_cache;
+};
+
+// The mean shaded colour and opacity of a curved triangle over [t0, t1] at a sample.
+ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
+                            std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, CurvedTriangleCache& cache);
+
+}  // namespace streak::exposure

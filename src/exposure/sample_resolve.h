@@ -1,0 +1,95 @@
+#pragma once
+
+#include "exposure/exposure_interval.h"
+#include "exposure/visible_pieces.h"
+#include "scene/shading.h"
+#include "util/stats.h"
+
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace streak::exposure {
+
+// What resolving samples from exposure intervals did, summed over samples (for --stats).
+struct SampleResolveCounters {
+    std::int64_t intervals = 0, maxIntervals = 0, compressedSamples = 0, merges = 0, maxResolved = 0, shadedSpans = 0;
+    double misorderedTime = 0.0, coveredPairTime = 0.0;
+    double resolveSeconds = 0.0, shadeSeconds = 0.0;
+    void add(const SampleResolveCounters& o) {
+        intervals += o.intervals, maxIntervals = std::max(maxIntervals, o.maxIntervals), compressedSamples += o.compressedSamples;
+        merges += o.merges, maxResolved = std::max(maxResolved, o.maxResolved), shadedSpans += o.shadedSpans;
+        misorderedTime += o.misorderedTime, coveredPairTime += o.coveredPairTime;
+        resolveSeconds += o.resolveSeconds, shadeSeconds += o.shadeSeconds;
+    }
+};
+
+// Records what every exposure-interval method reports: the tiles' wall time split by thread time
+// into intervals (finding them: intervalSeconds), resolve and shade; and the interval counters
+// (per sample of numSamples, the budget, compression, shaded spans).
+void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counters, double intervalSeconds, double numSamples, int budget);
+
+struct SampleResolveScratch {
+    std::vector<float> weights;
+    std::vector<VisiblePiece> pieces;
+};
+
+// The colour of one pixel sample from its exposure intervals (Gribel et al. 2010), for every
+// method that finds them: shade what must be known before the resolve (translucent opacity;
+// every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
+// exactly over time, then shade each visible piece once (abutting whole pieces of a triangle
+// merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
+// and shade(triangle, t0, t1) -> ShadedColor; exactDepth, when given, measures the linear
+// depths' misordering (resolveOpaque).
+template <class TriangleOf, class IsTranslucent, class Shade>
+glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const OracleWeights& oracle, const ExactDepth* exactDepth,
+                        const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
+                        SampleResolveScratch& scratch, SampleResolveCounters& counters) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    counters.intervals += std::int64_t(list.size());
+    counters.maxIntervals = std::max(counters.maxIntervals, std::int64_t(list.size()));
+    const bool isCompressing = budget > 0 && int(list.size()) > budget;
+    for (ExposureInterval& interval : list) {
+        const std::uint32_t triangle = triangleOf(interval.source);
+        if (isCompressing || isTranslucent(triangle)) {
+            const ShadedColor c = shade(triangle, interval.t0, interval.t1);
+            interval.color = c.color, interval.alpha = c.alpha, interval.isShaded = true;
+        }
+    }
+    if (isCompressing) {
+        ++counters.compressedSamples;
+        counters.merges += compressIntervals(list, budget, oracle);
+    }
+    counters.maxResolved = std::max(counters.maxResolved, std::int64_t(list.size()));
+    scratch.weights.resize(list.size());
+    const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
+    float backgroundWeight = 0.0f;
+    if (hasTranslucency) backgroundWeight = resolveTranslucent(list, scratch.weights);
+    else if (exactDepth) backgroundWeight = resolveOpaque(list, scratch.weights, exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
+    else backgroundWeight = resolveOpaque(list, scratch.weights);
+    const auto resolved = Clock::now();
+    counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
+
+    glm::vec3 sum = background * backgroundWeight;
+    scratch.pieces.clear();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        if (scratch.weights[k] <= 0.0f) continue;
+        if (list[k].isShaded) {
+            sum += list[k].color * scratch.weights[k];
+            continue;
+        }
+        const bool isWhole = scratch.weights[k] >= list[k].duration() * (1.0f - 1e-5f);
+        scratch.pieces.push_back({triangleOf(list[k].source), list[k].t0, list[k].t1, scratch.weights[k], isWhole});
+    }
+    mergeAbuttingPieces(scratch.pieces);
+    for (const VisiblePiece& piece : scratch.pieces) sum += shade(piece.triangle, piece.t0, piece.t1).color * piece.weight;
+    counters.shadedSpans += std::int64_t(scratch.pieces.size());
+    counters.shadeSeconds += std::chrono::duration<double>(Clock::now() - resolved).count();
+    return sum;
+}
+
+}  // namespace streak::exposure

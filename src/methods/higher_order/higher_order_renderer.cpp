@@ -1,0 +1,364 @@
+#include "methods/higher_order/higher_order_renderer.h"
+
+#include "exposure/curved_geometry.h"
+#include "exposure/curved_surface_point.h"
+#include "exposure/sample_resolve.h"
+#include "exposure/tile_pass.h"
+#include "raster/curved_triangle.h"
+#include "raster/tile_grid.h"
+#include "util/error.h"
+#include "util/random.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace streak {
+
+namespace {
+
+using exposure::ExposureInterval;
+
+constexpr int kTileSize = 16;
+constexpr int kMaxDepthSplits = 4;  ///< refined depth: levels of halving per span
+
+enum class Traversal { BoundingBox, Interval, Tile };
+
+struct Options {
+    Traversal traversal = Traversal::Interval;
+    int intervals = 8;
+    int tilePixels = 2;  ///< TILE: the side of the blocks tested
+    raster::RootSolver solver = raster::RootSolver::ClosedForm;
+    int cameraOrder = 3;
+    double depthTolerance = 1e-3;
+    int maxIntervals = 0;
+    int checkVisibility = 0;
+    int textureSamples = 32;
+    float tapsPerTexel = 2.0f;
+};
+
+struct Record {
+    std::uint32_t sample = 0;  ///< within the tile
+    ExposureInterval interval;
+};
+
+struct Counters {
+    std::int64_t coverageTests = 0, coverageHits = 0, culledBackFacing = 0, depthSplits = 0, pixelsSkipped = 0, blockTests = 0,
+                 blocksCulled = 0;
+    raster::BernsteinRootCounts roots;
+    double intervalSeconds = 0;
+    exposure::SampleResolveCounters resolve;
+};
+
+struct TileScratch {
+    std::vector<Record> records, bySample;
+    std::vector<std::uint32_t> runs;
+    std::vector<ExposureInterval> list;
+    exposure::SampleResolveScratch resolve;
+    std::vector<glm::vec3> color;
+    exposure::CurvedTriangleCache curved;
+    Counters counters;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool contains(const raster::PixelBounds& b, int x, int y) { return x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1; }
+
+class HigherOrderRenderer final : public Renderer {
+public:
+    explicit HigherOrderRenderer(const Options& options) : m_options(options) {}
+
+    Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
+        const raster::Viewport viewport{settings.width, settings.height};
+        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}, {}, 1};
+        {
+            PhaseTimer timer(context.stats, "setup");
+            frame.geometry.emplace(scene, float(settings.width) / float(settings.height), m_options.cameraOrder);
+            frame.spanShading.maxTextureTaps = m_options.textureSamples;
+            frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
+            frame.spanShading.samplesPerAxis = settings.aa;
+            frame.numBoxes = m_options.traversal == Traversal::Interval ? m_options.intervals : 1;
+            frame.boxes = frame.geometry->screenBounds(viewport, frame.numBoxes);
+            frame.bounds.resize(frame.geometry->segments().size());
+            for (std::size_t i = 0; i < frame.bounds.size(); ++i) {
+                raster::PixelBounds u{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(), -1, -1};
+                for (int k = 0; k < frame.numBoxes; ++k) {
+                    const raster::PixelBounds& b = frame.boxes[i * std::size_t(frame.numBoxes) + std::size_t(k)];
+                    if (b.empty()) continue;
+                    u.x0 = std::min(u.x0, b.x0), u.y0 = std::min(u.y0, b.y0), u.x1 = std::max(u.x1, b.x1), u.y1 = std::max(u.y1, b.y1);
+                }
+                frame.bounds[i] = u.x1 < 0 ? raster::PixelBounds{} : u;
+            }
+        }
+        raster::TileGrid grid(viewport, kTileSize);
+        tbb::enumerable_thread_specific<TileScratch> scratch;
+        const std::vector<glm::vec3> image = exposure::runTilePass(
+            grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
+            context.progress, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) { renderTile(frame, grid, tile, local, pixels); });
+
+        Counters total;
+        for (const TileScratch& s : scratch) {
+            const Counters& c = s.counters;
+            total.coverageTests += c.coverageTests, total.coverageHits += c.coverageHits, total.culledBackFacing += c.culledBackFacing;
+            total.depthSplits += c.depthSplits, total.pixelsSkipped += c.pixelsSkipped;
+            total.blockTests += c.blockTests, total.blocksCulled += c.blocksCulled;
+            total.roots.add(c.roots);
+            total.intervalSeconds += c.intervalSeconds;
+            total.resolve.add(c.resolve);
+        }
+        RenderStats& stats = context.stats;
+        const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, m_options.maxIntervals);
+        stats.setCounter("motion_order", frame.geometry->order());
+        stats.setCounter("motion_fitted", frame.geometry->isFitted() ? 1.0 : 0.0);
+        stats.setCounter("pieces_per_triangle", frame.geometry->numPieces());
+        stats.setCounter("curved_segments", double(frame.bounds.size()));
+        stats.setCounter("traversal_boxes", frame.numBoxes);
+        stats.setCounter("coverage_tests", double(total.coverageTests));
+        stats.setCounter("coverage_hits", double(total.coverageHits));
+        stats.setCounter("sample_test_efficiency", total.coverageTests > 0 ? double(total.coverageHits) / double(total.coverageTests) : 0.0);
+        stats.setCounter("pixels_skipped_by_intervals", double(total.pixelsSkipped));
+        stats.setCounter("tile_tests", double(total.blockTests));
+        stats.setCounter("tiles_culled", double(total.blocksCulled));
+        stats.setCounter("roots_solves", double(total.roots.solves));
+        stats.setCounter("roots_no_sign_change", double(total.roots.noSignChange));
+        stats.setCounter("roots_found", double(total.roots.roots));
+        stats.setCounter("roots_iterations", double(total.roots.iterations));
+        stats.setCounter("backface_intervals_culled", double(total.culledBackFacing));
+        stats.setCounter("depth_splits", double(total.depthSplits));
+        if (m_options.checkVisibility > 0) {
+            PhaseTimer timer(stats, "check_visibility");
+            stats.setCounter("visibility_accuracy", visibilityAccuracy(frame, grid));
+            stats.setCounter("visibility_checks", m_options.checkVisibility);
+        }
+
+        Image result(settings.width, settings.height);
+        std::copy(image.begin(), image.end(), result.pixels().begin());
+        return result;
+    }
+
+private:
+    struct Frame {
+        const Scene& scene;
+        const RenderSettings& settings;
+        const Options& options;
+        raster::Viewport viewport;
+        raster::SamplePattern pattern;
+        std::optional<exposure::CurvedGeometry> geometry;
+        SpanShadingSettings spanShading;
+        std::vector<raster::PixelBounds> boxes;   ///< numBoxes per segment (traversal)
+        std::vector<raster::PixelBounds> bounds;  ///< per segment: the union of its boxes, for binning
+        int numBoxes = 1;
+    };
+
+    // The sample's exposure intervals from one segment: its exact inside spans, each cut where
+    // linear depth between the ends departs from the true depth (refined depth), appended to
+    // `out` with shutter times. Returns whether the coverage test hit.
+    template <class Emit>
+    static bool intervalsOf(const Frame& frame, std::uint32_t index, const raster::CurvedTriangle& curved, const glm::dvec2& ndc,
+                            Counters& counters, Emit&& emit) {
+        const exposure::CurvedSegment& segment = frame.geometry->segments()[index];
+        const FlatTriangle& tri = frame.geometry->flat().triangles()[segment.triangle];
+        const double zNear = frame.scene.camera.zNear;
+        const bool checkNearPlane = !(segment.isInFront() && segment.nearness <= 1.0f / zNear);
+        std::array<double, raster::CurvedTriangle::kMaxSpanBounds> b;
+        const int n = curved.insideSpans(ndc, zNear, checkNearPlane, frame.options.solver, b, &counters.roots);
+        ++counters.coverageTests;
+        if (n == 0) return false;
+        ++counters.coverageHits;
+        const double dt = double(segment.t1) - double(segment.t0);
+        for (int k = 0; k + 1 < n; k += 2) {
+            const double u0 = b[std::size_t(k)], u1 = b[std::size_t(k + 1)];
+            const raster::HomogeneousSample s0 = curved.sample(u0, ndc), s1 = curved.sample(u1, ndc);
+            // The triangle cannot turn over inside a span (its edges would pass the sample).
+            if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !curved.sample(0.5 * (u0 + u1), ndc).isFrontFacing)) {
+                ++counters.culledBackFacing;
+                continue;
+            }
+            split(frame, curved, ndc, u0, s0.viewDepth, u1, s1.viewDepth, 0, counters, [&](double a, double da, double c, double dc) {
+                ExposureInterval interval;
+                interval.t0 = float(segment.t0 + a * dt), interval.t1 = float(segment.t0 + c * dt);
+                interval.depth0 = float(da), interval.depth1 = float(dc);
+                interval.source = index;
+                if (interval.t1 > interval.t0) emit(interval);
+            });
+        }
+        return true;
+    }
+
+    template <class Emit>
+    static void split(const Frame& frame, const raster::CurvedTriangle& curved, const glm::dvec2& ndc, double u0, double d0, double u1,
+                      double d1, int level, Counters& counters, Emit&& emit) {
+        if (frame.options.depthTolerance > 0.0 && level < kMaxDepthSplits) {
+            const double um = 0.5 * (u0 + u1);
+            const raster::HomogeneousSample m = curved.sample(um, ndc);
+            if (m.isValid && std::abs(m.viewDepth - 0.5 * (d0 + d1)) > frame.options.depthTolerance * std::abs(m.viewDepth)) {
+                ++counters.depthSplits;
+                split(frame, curved, ndc, u0, d0, um, m.viewDepth, level + 1, counters, emit);
+                split(frame, curved, ndc, um, m.viewDepth, u1, d1, level + 1, counters, emit);
+                return;
+            }
+        }
+        emit(u0, d0, u1, d1);
+    }
+
+    // Whether generalized INTERVAL lets segment `index` reach pixel (px, py) at all.
+    static bool isInSomeBox(const Frame& frame, std::uint32_t index, int px, int py) {
+        if (frame.numBoxes == 1) return true;
+        const raster::PixelBounds* boxes = &frame.boxes[std::size_t(index) * std::size_t(frame.numBoxes)];
+        for (int k = 0; k < frame.numBoxes; ++k)
+            if (contains(boxes[k], px, py)) return true;
+        return false;
+    }
+
+    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+        using Clock = std::chrono::steady_clock;
+        const raster::PixelBounds rect = grid.tileBounds(tile);
+        const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
+        const int spp = frame.pattern.count();
+        const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
+        const Scene& scene = frame.scene;
+        const exposure::CurvedGeometry& geometry = *frame.geometry;
+        const auto segments = geometry.segments();
+        const auto& triangles = geometry.flat().triangles();
+        const int width = frame.viewport.width, height = frame.viewport.height;
+        Counters& counters = scratch.counters;
+
+        const auto start = Clock::now();
+        scratch.records.clear();
+        scratch.curved.clear();
+        for (const std::uint32_t index : grid.items(tile)) {
+            const raster::PixelBounds& box = frame.bounds[index];
+            const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
+                                             std::min(box.y1, rect.y1)};
+            if (region.empty()) continue;
+            const raster::CurvedTriangle& curved = exposure::curvedTriangleOf(geometry, index, scratch.curved);
+            const int block = frame.options.traversal == Traversal::Tile ? frame.options.tilePixels : std::max(tileWidth, tileHeight);
+            for (int by = region.y0; by <= region.y1; by += block)
+                for (int bx = region.x0; bx <= region.x1; bx += block) {
+                    const int bx1 = std::min(bx + block - 1, region.x1), by1 = std::min(by + block - 1, region.y1);
+                    if (frame.options.traversal == Traversal::Tile) {
+                        // TILE: the block's samples lie in [bx, bx1 + 1) x [by, by1 + 1).
+                        ++counters.blockTests;
+                        const glm::dvec2 lo = raster::ndcFromRaster(bx, by1 + 1, width, height), hi = raster::ndcFromRaster(bx1 + 1, by, width, height);
+                        if (curved.missesRectangle(0.5 * (lo + hi), 0.5 * (hi - lo))) {
+                            ++counters.blocksCulled;
+                            continue;
+                        }
+                    }
+                    for (int py = by; py <= by1; ++py)
+                        for (int px = bx; px <= bx1; ++px) {
+                            if (!isInSomeBox(frame, index, px, py)) {
+                                counters.pixelsSkipped += 1;
+                                continue;
+                            }
+                            for (int s = 0; s < spp; ++s) {
+                                const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
+                                const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                                intervalsOf(frame, index, curved, ndc, counters, [&](const ExposureInterval& interval) {
+                                    scratch.records.push_back({sample, interval});
+                                });
+                            }
+                        }
+                }
+        }
+        raster::groupBySample(std::span<const Record>(scratch.records), numSamples, scratch.runs, scratch.bySample);
+        counters.intervalSeconds += secondsSince(start);
+
+        exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
+                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
+                              [&](const glm::dvec2& ndc, std::vector<ExposureInterval>& list) {
+            return exposure::resolveSample(
+                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, scene.background,
+                [&](std::uint32_t source) { return segments[source].triangle; },
+                [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
+                [&](std::uint32_t triangle, float t0, float t1) {
+                    return exposure::shadeCurvedSpan(geometry, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc,
+                                                     scratch.curved);
+                },
+                scratch.resolve, counters.resolve);
+        });
+    }
+
+    // Gribel et al. 2013's visibility accuracy: at seeded random (sample, time) pairs, whether the
+    // nearest of the sample's resolved intervals covering that time (linear depth, as the opaque
+    // resolve orders them) belongs to the triangle that is nearest at that exact time, found by
+    // testing every triangle binned to the sample's tile with its corners at that time.
+    static double visibilityAccuracy(const Frame& frame, const raster::TileGrid& grid) {
+        const exposure::CurvedGeometry& geometry = *frame.geometry;
+        const auto segments = geometry.segments();
+        const auto& triangles = geometry.flat().triangles();
+        const double zNear = frame.scene.camera.zNear;
+        const int width = frame.viewport.width, height = frame.viewport.height, spp = frame.pattern.count();
+        Rng rng(frame.settings.seed * 7919u + 3u);
+        Counters ignored;
+        exposure::CurvedTriangleCache cache;
+        int agree = 0;
+        for (int check = 0; check < frame.options.checkVisibility; ++check) {
+            const int px = std::min(width - 1, int(rng.uniform() * float(width)));
+            const int py = std::min(height - 1, int(rng.uniform() * float(height)));
+            const int s = std::min(spp - 1, int(rng.uniform() * float(spp)));
+            const float t = rng.uniform();
+            const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
+            const int tile = (py / kTileSize) * ((width + kTileSize - 1) / kTileSize) + px / kTileSize;
+            std::int64_t resolved = -1, truth = -1;
+            double resolvedDepth = std::numeric_limits<double>::max(), trueDepth = std::numeric_limits<double>::max();
+            for (const std::uint32_t index : grid.items(tile)) {
+                const exposure::CurvedSegment& segment = segments[index];
+                if (t < segment.t0 || t > segment.t1 || !isInSomeBox(frame, index, px, py) || !contains(frame.bounds[index], px, py)) continue;
+                const raster::CurvedTriangle& curved = exposure::curvedTriangleOf(geometry, index, cache);
+                intervalsOf(frame, index, curved, ndc, ignored, [&](const ExposureInterval& interval) {
+                    if (t >= interval.t0 && t <= interval.t1 && interval.depthAt(t) < resolvedDepth)
+                        resolvedDepth = interval.depthAt(t), resolved = segment.triangle;
+                });
+                // Brute force: the triangle at exactly time t.
+                const std::array<glm::dvec3, 3> c = curved.cornersAt(segment.localTime(t));
+                const std::array<glm::dvec3, 3> edges{glm::cross(c[0], c[1]), glm::cross(c[1], c[2]), glm::cross(c[2], c[0])};
+                const glm::dvec3 p(ndc, 1.0);
+                if (!raster::isInsideByEdges(edges, ndc, {glm::dot(edges[0], p), glm::dot(edges[1], p), glm::dot(edges[2], p)})) continue;
+                const raster::HomogeneousSample h = raster::evaluateHomogeneousXyw(c, ndc);
+                if (!h.isValid || h.viewDepth < zNear || (!triangles[segment.triangle].isDoubleSided && !h.isFrontFacing)) continue;
+                if (h.viewDepth < trueDepth) trueDepth = h.viewDepth, truth = segment.triangle;
+            }
+            agree += resolved == truth;
+        }
+        return double(agree) / double(frame.options.checkVisibility);
+    }
+
+    Options m_options;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options) {
+    Options o;
+    const std::string traversal = options.getString("traversal", "interval");
+    if (traversal == "bbox") o.traversal = Traversal::BoundingBox;
+    else if (traversal == "interval") o.traversal = Traversal::Interval;
+    else if (traversal == "tile") o.traversal = Traversal::Tile;
+    else throw Error("method 'higher-order': traversal must be bbox, interval or tile, got '" + traversal + "'");
+    o.tilePixels = options.getInt("tile", 2, 1, 16);
+    if (o.tilePixels != 1 && o.tilePixels != 2 && o.tilePixels != 4)
+        throw Error("method 'higher-order': tile must be 1, 2 or 4 pixels, got " + std::to_string(o.tilePixels));
+    o.intervals = options.getInt("intervals", 8, 1, 64);
+    const std::string solver = options.getString("solver", "closed-form");
+    if (solver == "closed-form") o.solver = raster::RootSolver::ClosedForm;
+    else if (solver == "clipping") o.solver = raster::RootSolver::BezierClipping;
+    else throw Error("method 'higher-order': solver must be closed-form or clipping, got '" + solver + "'");
+    o.cameraOrder = options.getInt("camera-order", 3, 1, raster::CurvedTriangle::kMaxOrder);
+    o.depthTolerance = options.getDouble("depth-tolerance", 1e-3, 0.0, 1.0);
+    o.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
+    o.checkVisibility = options.getInt("check-visibility", 0, 0, 20000);
+    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
+    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    return std::make_unique<HigherOrderRenderer>(o);
+}
+
+}  // namespace streak
