@@ -138,6 +138,7 @@ struct RenderArgs {
     std::optional<std::string> animation;
     std::optional<int> motionKeys;
     std::optional<std::string> motionCurve;
+    std::optional<int> motionFitSamples;
     std::optional<double> keyTolerance;
     std::optional<int> camera;
     std::optional<std::string> cameraPos;
@@ -155,7 +156,7 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
         {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
-        {"--motion-curve", args.motionCurve.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
+        {"--motion-curve", args.motionCurve.has_value()}, {"--motion-fit-samples", args.motionFitSamples.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
         {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
@@ -168,6 +169,8 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     options.animation = args.animation.value_or("");
     options.motionKeys = args.motionKeys.value_or(options.motionKeys);
     if (args.motionKeys && *args.motionKeys == 0) throw Error("--motion-keys must be in [2, 256], got 0");
+    options.motionFitSamples = args.motionFitSamples.value_or(options.motionFitSamples);
+    if (args.motionFitSamples && *args.motionFitSamples < 0) throw Error("--motion-fit-samples must be 0 or more, got " + std::to_string(*args.motionFitSamples));
     if (args.motionCurve) {
         if (*args.motionCurve == "bezier") options.motionCurve = MotionInterpolation::Bezier;
         else if (*args.motionCurve != "linear") throw Error("--motion-curve must be linear or bezier, got '" + *args.motionCurve + "'");
@@ -403,6 +406,8 @@ int run(int argc, char** argv) {
                        "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
     render->add_option("--motion-curve", renderArgs.motionCurve,
                        "glTF: linear (piecewise linear keys) or bezier (the keys, 3 or 4, become the control points of the curve through them)");
+    render->add_option("--motion-fit-samples", renderArgs.motionFitSamples,
+                       "glTF, --motion-curve bezier: fit the curve by least squares to N evenly spaced poses (default 4 (K - 1) + 1 for --motion-keys K); 0: the curve through the K poses");
     render->add_option("--key-tolerance", renderArgs.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");
     render->add_option("--camera", renderArgs.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
     render->add_option("--camera-pos", renderArgs.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");

@@ -50,7 +50,8 @@ CurvedGeometry::CurvedGeometry(const Scene& scene, float aspect, int cameraOrder
     if (isCapped)
         for (const Mesh& mesh : scene.meshes)
             if (mesh.interpolation == MotionInterpolation::PiecewiseLinear) pieces = std::max(pieces, mesh.numKeys - 1);
-    m_isFitted = !scene.camera.isStatic();
+    // Past the cap some key times fall inside pieces: their paths are then fitted too.
+    m_isFitted = !scene.camera.isStatic() || isCapped;
     m_order = m_isFitted ? std::clamp(cameraOrder, 1, raster::CurvedTriangle::kMaxOrder) : bezierOrder;
     m_numPieces = pieces;
 

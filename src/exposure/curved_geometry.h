@@ -34,7 +34,9 @@ struct CurvedSegment {
 // (one piece, order keys - 1 <= 3) and of piecewise-linear keys (a piece per key segment, order
 // 1) under a static camera, since projection is linear in homogeneous coordinates. Under a
 // moving camera the clip-space path, object and camera motion together, is fitted per piece
-// by the curve of order cameraOrder through cameraOrder + 1 evenly spaced times of it.
+// by the curve of order cameraOrder through cameraOrder + 1 evenly spaced times of it; so are
+// linear keys whose key segments do not all end on the pieces' ends (the pieces are the least
+// common multiple of the meshes' key segments, at most 64).
 // Segments are triangle-major: piece s of triangle i is at i * numPieces + s.
 class CurvedGeometry {
 public:
@@ -44,7 +46,7 @@ public:
     const FlatGeometry& flat() const { return m_flat; }
     int numPieces() const { return m_numPieces; }
     int order() const { return m_order; }
-    bool isFitted() const { return m_isFitted; }  ///< the camera moves: paths are fitted, not exact
+    bool isFitted() const { return m_isFitted; }  ///< paths are fitted (a moving camera, capped pieces), not exact
     std::span<const CurvedSegment> segments() const { return m_segments; }
     const CurvedSegment& segmentAt(std::uint32_t triangle, float t) const;
 

@@ -856,6 +856,41 @@ std::array<std::array<double, 4>, 4> bezierThroughSamples(int n) {
     return w;
 }
 
+std::vector<double> bezierFittingSamples(int n, int samples) {
+    assert(n >= 0 && n <= 3 && samples >= n + 1);
+    // The normal equations (A^T A) W = A^T with A[i][j] = B_j^n(t_i), by Gauss-Jordan in long
+    // double: (n + 1) x (n + 1), well conditioned for evenly spaced samples.
+    const int m = n + 1;
+    std::vector<long double> a(std::size_t(samples) * std::size_t(m));
+    for (int i = 0; i < samples; ++i) {
+        const long double t = (long double)i / (samples - 1);
+        for (int j = 0; j < m; ++j) a[std::size_t(i * m + j)] = kBinomial[n][j] * std::pow(t, j) * std::pow(1.0L - t, n - j);
+    }
+    std::vector<long double> normal(std::size_t(m * m), 0.0L), rhs(std::size_t(m * samples), 0.0L);
+    for (int j = 0; j < m; ++j) {
+        for (int k = 0; k < m; ++k)
+            for (int i = 0; i < samples; ++i) normal[std::size_t(j * m + k)] += a[std::size_t(i * m + j)] * a[std::size_t(i * m + k)];
+        for (int i = 0; i < samples; ++i) rhs[std::size_t(j * samples + i)] = a[std::size_t(i * m + j)];
+    }
+    for (int col = 0; col < m; ++col) {
+        int pivot = col;
+        for (int r = col + 1; r < m; ++r)
+            if (std::abs(normal[std::size_t(r * m + col)]) > std::abs(normal[std::size_t(pivot * m + col)])) pivot = r;
+        for (int c = 0; c < m; ++c) std::swap(normal[std::size_t(col * m + c)], normal[std::size_t(pivot * m + c)]);
+        for (int c = 0; c < samples; ++c) std::swap(rhs[std::size_t(col * samples + c)], rhs[std::size_t(pivot * samples + c)]);
+        const long double scale = 1.0L / normal[std::size_t(col * m + col)];
+        for (int c = 0; c < m; ++c) normal[std::size_t(col * m + c)] *= scale;
+        for (int c = 0; c < samples; ++c) rhs[std::size_t(col * samples + c)] *= scale;
+        for (int r = 0; r < m; ++r) {
+            if (r == col) continue;
+            const long double f = normal[std::size_t(r * m + col)];
+            for (int c = 0; c < m; ++c) normal[std::size_t(r * m + c)] -= f * normal[std::size_t(col * m + c)];
+            for (int c = 0; c < samples; ++c) rhs[std::size_t(r * samples + c)] -= f * rhs[std::size_t(col * samples + c)];
+        }
+    }
+    return std::vector<double>(rhs.begin(), rhs.end());
+}
+
 int rootsByBezierClipping(const Bernstein& p, std::span<double, kMaxBernsteinDegree> roots, BernsteinRootCounts* counts) {
     BernsteinRootCounts local;
     Bernstein q;

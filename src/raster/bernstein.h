@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace streak::raster {
 
@@ -48,6 +49,11 @@ Bernstein operator*(const Bernstein& a, const Bernstein& b);  ///< degree a + b 
 // n + 1 samples at t = i / n: control_j = sum_i W[j][i] sample_i. For n = 2,
 // P1 = 2 P(1/2) - (P0 + P2) / 2. n <= 3.
 std::array<std::array<double, 4>, 4> bezierThroughSamples(int n);
+
+// The weights W (row-major, (n + 1) x samples) of the degree-n Bezier curve fitted by least
+// squares to samples at t = i / (samples - 1): control_j = sum_i W[j * samples + i] sample_i.
+// samples >= n + 1 (equal: bezierThroughSamples); n <= 3.
+std::vector<double> bezierFittingSamples(int n, int samples);
 
 // How the roots of the edge equations were found, for --stats and for the solvers' comparison.
 struct BernsteinRootCounts {

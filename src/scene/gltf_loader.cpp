@@ -132,6 +132,7 @@ public:
         collectInstances();
         sampleKeys();
         placeCamera();
+        curveKeys();
         if (m_stats) {
             m_stats->setCounter("gltf_instanced_primitives", double(m_instances.size()));
             m_stats->setCounter("gltf_skipped_primitives", double(m_numSkipped));
@@ -150,11 +151,17 @@ private:
         if (o.motionCurve == MotionInterpolation::Bezier && o.motionKeys != 3 && o.motionKeys != 4)
             throw Error("--motion-curve bezier takes --motion-keys 3 or 4 (Bezier order 2 or 3), got " +
                         (o.motionKeys == 0 ? std::string("none") : str(o.motionKeys)));
+        if (o.motionFitSamples > 0 && (o.motionCurve != MotionInterpolation::Bezier || o.motionFitSamples <= o.motionKeys ||
+                                       o.motionFitSamples > kMaxMotionKeys))
+            throw Error("--motion-fit-samples takes --motion-curve bezier and more samples than --motion-keys, at most " +
+                        str(kMaxMotionKeys) + ", got " + str(o.motionFitSamples));
         if (!(o.keyTolerancePixels > 0.0) || !std::isfinite(o.keyTolerancePixels)) throw Error("--key-tolerance must be a positive number of pixels");
         if (o.imageHeight < 1) throw Error("the image height must be positive");
         if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
         if (o.camera && o.lookAt) throw Error("a glTF camera and an explicit camera cannot both be given");
         m_numKeys = o.motionKeys == 0 ? 2 : o.motionKeys;  // chosen keys start from two
+        m_fitSamples = o.motionCurve != MotionInterpolation::Bezier ? 0 : o.motionFitSamples < 0 ? 4 * (o.motionKeys - 1) + 1 : o.motionFitSamples;
+        if (m_fitSamples != 0) m_numKeys = m_fitSamples;  // fitted down to motionKeys in curveKeys
     }
 
     // Seconds of animation time of key k of numKeys, evenly over the shutter.
@@ -662,6 +669,29 @@ private:
         }
     }
 
+    // --motion-curve bezier: the poses become the control points of the curve through them (or
+    // of the least-squares fit to motionFitSamples poses), once the camera has been placed from
+    // the poses (the control points overshoot the motion).
+    void curveKeys() {
+        if (m_options.motionCurve != MotionInterpolation::Bezier) return;
+        for (Mesh& mesh : m_scene.meshes) {
+            mesh.interpolation = MotionInterpolation::Bezier;
+            if (m_fitSamples == 0) {
+                bezierControlPointsThroughSamples(mesh.positions, mesh.numKeys);
+                bezierControlPointsThroughSamples(mesh.normals, mesh.numKeys);
+                continue;
+            }
+            const int order = m_options.motionKeys - 1;
+            mesh.positions = bezierControlPointsFittingSamples(mesh.positions, mesh.numKeys, order);
+            if (mesh.hasNormals()) mesh.normals = bezierControlPointsFittingSamples(mesh.normals, mesh.numKeys, order);
+            mesh.numKeys = m_options.motionKeys;
+        }
+        if (m_stats && m_fitSamples != 0) {
+            m_stats->setCounter("motion_keys", double(m_options.motionKeys));
+            m_stats->setCounter("motion_fit_samples", double(m_fitSamples));
+        }
+    }
+
     // One streak Mesh per instance from the key poses.
     void writeMeshes(const std::vector<PosedInstances>& keys) {
         const int numKeys = int(keys.size());
@@ -682,11 +712,6 @@ private:
             for (const PosedInstances& key : keys) {
                 mesh.positions.insert(mesh.positions.end(), key.positions[i].begin(), key.positions[i].end());
                 if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i].begin(), key.normals[i].end());
-            }
-            if (m_options.motionCurve == MotionInterpolation::Bezier) {
-                mesh.interpolation = MotionInterpolation::Bezier;
-                bezierControlPointsThroughSamples(mesh.positions, numKeys);
-                bezierControlPointsThroughSamples(mesh.normals, numKeys);
             }
             mesh.uvs = data.uvs;
             mesh.colors = data.colors;
@@ -782,6 +807,7 @@ private:
     gltf::DocumentLimits m_documentLimits;
     Scene m_scene;
     int m_numKeys = 2;                                               ///< keys sampled first (options.motionKeys, or 2 to refine)
+    int m_fitSamples = 0;                                            ///< Bezier keys: poses fitted by least squares (0: through the keys)
     std::size_t m_vertexWorkPerKey = 0;                              ///< GltfLimits::maxVertexWork's measure of one key
     std::vector<gltf::Node> m_nodes;
     std::vector<bool> m_isInScene;                                   ///< per node: reachable from the scene's roots

@@ -46,6 +46,9 @@ struct GltfOptions {
                                 ///< per scene (2, 3, 5, 9...) to follow the animation on screen
     MotionInterpolation motionCurve = MotionInterpolation::PiecewiseLinear;  ///< Bezier: the keys become the control
                                 ///< points of the curve through the motionKeys (3 or 4) samples
+    int motionFitSamples = -1;  ///< Bezier: the least-squares fit to N > motionKeys evenly spaced poses;
+                                ///< -1: N = 4 (motionKeys - 1) + 1 (bench/higher_order_bench.py: closer
+                                ///< to the animation than the curve through motionKeys poses); 0: that curve
     double keyTolerancePixels = 0.125;  ///< chosen keys: the screen deviation they may leave
     int maxMotionKeys = 33;             ///< chosen keys: at most this many
     int imageHeight = 768;              ///< pixels, the unit of keyTolerancePixels

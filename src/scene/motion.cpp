@@ -52,4 +52,17 @@ void bezierControlPointsThroughSamples(std::span<glm::vec3> keys, int numKeys) {
         }
 }
 
+std::vector<glm::vec3> bezierControlPointsFittingSamples(std::span<const glm::vec3> samples, int numSamples, int order) {
+    assert(numSamples > order && samples.size() % std::size_t(numSamples) == 0);
+    const std::size_t n = samples.size() / std::size_t(numSamples);
+    const std::vector<double> weights = raster::bezierFittingSamples(order, numSamples);
+    std::vector<glm::vec3> control(std::size_t(order + 1) * n, glm::vec3(0.0f));
+    for (int j = 0; j <= order; ++j)
+        for (int i = 0; i < numSamples; ++i) {
+            const float w = float(weights[std::size_t(j * numSamples + i)]);
+            for (std::size_t v = 0; v < n; ++v) control[std::size_t(j) * n + v] += w * samples[std::size_t(i) * n + v];
+        }
+    return control;
+}
+
 }  // namespace streak

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace streak {
 
@@ -50,6 +51,10 @@ MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, floa
 // them (raster::bezierThroughSamples). Linear in the samples, so it converts positions and
 // normals alike. numKeys <= 4.
 void bezierControlPointsThroughSamples(std::span<glm::vec3> keys, int numKeys);
+
+// The control points (order + 1 blocks) of the Bezier curves of that order fitted by least
+// squares to numSamples blocks of samples at evenly spaced times (raster::bezierFittingSamples).
+std::vector<glm::vec3> bezierControlPointsFittingSamples(std::span<const glm::vec3> samples, int numSamples, int order);
 
 // Shutter time of key k of numKeys (uniform spacing).
 inline float keyTime(int k, int numKeys) { return float(k) / float(numKeys - 1); }

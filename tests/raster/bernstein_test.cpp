@@ -296,6 +296,27 @@ TEST(Bernstein, ArithmeticIsPointwise) {
     }
 }
 
+TEST(Bernstein, LeastSquaresFitOfSamples) {
+    // With n + 1 samples the fit is the curve through them; with more it reproduces any curve of
+    // degree <= n exactly (the residual is zero).
+    for (int n = 1; n <= 3; ++n) {
+        const std::vector<double> through = bezierFittingSamples(n, n + 1);
+        const auto w = bezierThroughSamples(n);
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) EXPECT_NEAR(through[std::size_t(j * (n + 1) + i)], w[std::size_t(j)][std::size_t(i)], 1e-12);
+        const int samples = 4 * n + 1;
+        const std::vector<double> fit = bezierFittingSamples(n, samples);
+        Bernstein curve;
+        curve.degree = n;
+        for (int j = 0; j <= n; ++j) curve.coefficients[std::size_t(j)] = 0.3 * j * j - 0.7 * j + 0.1;
+        for (int j = 0; j <= n; ++j) {
+            double control = 0.0;
+            for (int i = 0; i < samples; ++i) control += fit[std::size_t(j * samples + i)] * curve(double(i) / (samples - 1));
+            EXPECT_NEAR(control, curve.coefficients[std::size_t(j)], 1e-12) << "n " << n << " control " << j;
+        }
+    }
+}
+
 TEST(Bernstein, InterpolationAndBezierThroughSamples) {
     Rng rng(4);
     for (int size = 1; size <= kMaxBernsteinDegree + 1; ++size) {

@@ -5,6 +5,7 @@
 #include "support/shared_scenes.h"
 #include "util/error.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
@@ -433,10 +434,10 @@ TEST(GltfModels, ToyCarCameraPoseAndFieldOfView) {
 
 namespace streak {
 
-TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
-    // A node turning 90 degrees about z over 1 s (LINEAR: constant angular speed), the whole
-    // second in the shutter. Vertex (1, 0, 0) truly sits at (cos 90t, sin 90t, 0); the chosen
-    // piecewise-linear keys must stay within the tolerance of it on screen at every time.
+namespace {
+
+// A triangle on a node turning 90 degrees about z over 1 s (LINEAR: constant angular speed).
+test::GltfBuilder quarterTurn() {
     test::GltfBuilder b;
     addTriangle(b);
     const float s = std::sin(std::numbers::pi_v<float> / 4), c = std::cos(std::numbers::pi_v<float> / 4);
@@ -446,6 +447,16 @@ TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
     turn["samplers"] = json::array({{{"input", times}, {"output", turns}}});
     turn["channels"] = json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}});
     b.json()["animations"] = json::array({turn});
+    return b;
+}
+
+}  // namespace
+
+TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
+    // A node turning 90 degrees about z over 1 s (LINEAR: constant angular speed), the whole
+    // second in the shutter. Vertex (1, 0, 0) truly sits at (cos 90t, sin 90t, 0); the chosen
+    // piecewise-linear keys must stay within the tolerance of it on screen at every time.
+    test::GltfBuilder b = quarterTurn();
     GltfOptions options;
     options.shutter = 24;
     options.imageHeight = 240;
@@ -479,6 +490,48 @@ TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
     options.motionKeys = 0;
     options.shutter = 0;
     EXPECT_EQ(load(b, options).meshes[0].numKeys, 2);
+}
+
+}  // namespace streak
+
+namespace streak {
+
+TEST(GltfLoader, BezierKeysFollowARotationByLeastSquaresOrThroughThePoses) {
+    // The node turning 90 degrees about z over the shutter, as Bezier keys: --motion-curve bezier
+    // with 3 keys is the quadratic fitted by least squares to 9 poses by default, or with
+    // --motion-fit-samples 0 the quadratic through 3 of them (it meets the circle there). Both
+    // follow the quarter circle far closer than the chord of two keys (0.29 radii); least
+    // squares has the smaller largest error.
+    test::GltfBuilder b = quarterTurn();
+    const float s = std::sin(std::numbers::pi_v<float> / 4), c = std::cos(std::numbers::pi_v<float> / 4);
+    GltfOptions options;
+    options.shutter = 24;
+    options.motionKeys = 3;
+    options.motionCurve = MotionInterpolation::Bezier;
+    const auto worstError = [&](const Scene& scene) {
+        const Mesh& mesh = scene.meshes[0];
+        EXPECT_EQ(mesh.numKeys, 3);
+        EXPECT_EQ(mesh.interpolation, MotionInterpolation::Bezier);
+        double worst = 0.0;
+        for (int i = 0; i <= 1000; ++i) {
+            const float t = float(i) / 1000.0f, angle = std::numbers::pi_v<float> / 2 * t;
+            worst = std::max(worst, double(glm::distance(mesh.positionAt(1, mesh.weightsAt(t)), glm::vec3(std::cos(angle), std::sin(angle), 0.0f))));
+        }
+        return worst;
+    };
+    RenderStats stats;
+    const double fitted = worstError(load(b, options, &stats));
+    EXPECT_EQ(stats.counter("motion_fit_samples"), 9.0);
+    options.motionFitSamples = 0;
+    const Scene through = load(b, options);
+    const double interpolated = worstError(through);
+    // Through the poses: exact at t = 1/2.
+    expectNear(through.meshes[0].positionAt(1, through.meshes[0].weightsAt(0.5f)), {c, s, 0.0f}, 1e-5f);
+    EXPECT_LT(interpolated, 0.05);
+    EXPECT_LT(fitted, interpolated);
+    // Least squares needs Bezier keys and more poses than keys.
+    options.motionFitSamples = 3;
+    EXPECT_THROW(load(b, options), Error);
 }
 
 }  // namespace streak

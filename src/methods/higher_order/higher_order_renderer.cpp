@@ -290,7 +290,9 @@ private:
     // Gribel et al. 2013's visibility accuracy: at seeded random (sample, time) pairs, whether the
     // nearest of the sample's resolved intervals covering that time (linear depth, as the opaque
     // resolve orders them) belongs to the triangle that is nearest at that exact time, found by
-    // testing every triangle binned to the sample's tile with its corners at that time.
+    // testing every triangle binned to the sample's tile with the scene's own corners at that
+    // time (key poses through the camera: fitting errors count). Pairs where both see the
+    // background are left out.
     static double visibilityAccuracy(const Frame& frame, const raster::TileGrid& grid) {
         const exposure::CurvedGeometry& geometry = *frame.geometry;
         const auto segments = geometry.segments();
@@ -300,7 +302,7 @@ private:
         Rng rng(frame.settings.seed * 7919u + 3u);
         Counters ignored;
         exposure::CurvedTriangleCache cache;
-        int agree = 0;
+        int agree = 0, counted = 0;
         for (int check = 0; check < frame.options.checkVisibility; ++check) {
             const int px = std::min(width - 1, int(rng.uniform() * float(width)));
             const int py = std::min(height - 1, int(rng.uniform() * float(height)));
@@ -318,18 +320,28 @@ private:
                     if (t >= interval.t0 && t <= interval.t1 && interval.depthAt(t) < resolvedDepth)
                         resolvedDepth = interval.depthAt(t), resolved = segment.triangle;
                 });
-                // Brute force: the triangle at exactly time t.
-                const std::array<glm::dvec3, 3> c = curved.cornersAt(segment.localTime(t));
+                // Brute force: the scene's triangle at exactly time t (its key poses and the
+                // camera, not the curves fitted to them).
+                const FlatTriangle& tri = triangles[segment.triangle];
+                const std::array<glm::vec3, 3> world = geometry.flat().cornersAt(tri, t);
+                const glm::mat4 clipFromWorld = frame.scene.camera.clipFromWorld(t, float(width) / float(height));
+                std::array<glm::dvec3, 3> c;
+                for (std::size_t i = 0; i < 3; ++i) {
+                    const glm::vec4 clip = clipFromWorld * glm::vec4(world[i], 1.0f);
+                    c[i] = glm::dvec3(clip.x, clip.y, clip.w);
+                }
                 const std::array<glm::dvec3, 3> edges{glm::cross(c[0], c[1]), glm::cross(c[1], c[2]), glm::cross(c[2], c[0])};
                 const glm::dvec3 p(ndc, 1.0);
                 if (!raster::isInsideByEdges(edges, ndc, {glm::dot(edges[0], p), glm::dot(edges[1], p), glm::dot(edges[2], p)})) continue;
                 const raster::HomogeneousSample h = raster::evaluateHomogeneousXyw(c, ndc);
-                if (!h.isValid || h.viewDepth < zNear || (!triangles[segment.triangle].isDoubleSided && !h.isFrontFacing)) continue;
+                if (!h.isValid || h.viewDepth < zNear || (!tri.isDoubleSided && !h.isFrontFacing)) continue;
                 if (h.viewDepth < trueDepth) trueDepth = h.viewDepth, truth = segment.triangle;
             }
+            if (resolved < 0 && truth < 0) continue;  // background both ways: no visibility to get right
+            ++counted;
             agree += resolved == truth;
         }
-        return double(agree) / double(frame.options.checkVisibility);
+        return counted > 0 ? double(agree) / double(counted) : 1.0;
     }
 
     Options m_options;

@@ -12,7 +12,8 @@ namespace streak {
 // (exposure::CurvedGeometry: Bezier keys exactly, linear keys as order 1, a moving camera
 // fitted), so each edge equation at a sample is a Bernstein polynomial of degree 2n whose roots
 // bound the exact time spans in which the sample is inside. Each span is an exposure interval
-// with linear depth, split where linear depth strays from the true depth (refined depth);
+// with linear depth, split where linear depth strays from the true depth at mid-span (refined
+// depth; a depth curve crossing its chord at mid-span is not split);
 // resolve and shading are analytic's (exposure::resolveSample), the shading along the curved
 // uv path.
 //
@@ -31,8 +32,8 @@ namespace streak {
 //   off the true depth by more than this share of it (0.001; 0: never split).
 // - max-intervals: per-sample budget, 0 (default) for unlimited (Gribel 2010's compression).
 // - check-visibility: N in [1, 20000] compares, at N seeded random (sample, time) pairs, the resolved
-//   nearest triangle with the one found at that exact time by brute force (stats
-//   visibility_accuracy).
+//   nearest triangle with the one found at that exact time by brute force from the scene's
+//   own poses (stats visibility_accuracy, over the pairs where either sees a triangle).
 // - texture-samples, taps-per-texel: as for analytic.
 std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options);
 
