@@ -1,5 +1,7 @@
 #include "exposure/curved_surface_point.h"
 
+#include <cmath>
+
 namespace streak::exposure {
 
 namespace {
@@ -27,12 +29,37 @@ CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const ras
       m_step(2.0 / (double(viewport.width) * samplesPerAxis), 2.0 / (double(viewport.height) * samplesPerAxis)),
       m_triangle(triangle),
       m_ndc(ndc),
+      m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),
       m_cache(cache) {}
 
-bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) const {
+const CurvedSegment& CurvedSurfacePoint::select(float t) const {
     const CurvedSegment& segment = m_geometry.segmentAt(m_triangle, t);
-    const auto index = std::uint32_t(&segment - m_geometry.segments().data());
-    const raster::CurvedTriangle& curved = curvedTriangleOf(m_geometry, index, m_cache);
+    if (&segment != m_segment) {
+        m_segment = &segment;
+        m_curved = &curvedTriangleOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()), m_cache);
+        // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
+        m_uNumerator = m_vNumerator = m_denominator = raster::Bernstein{};
+        for (int i = 0; i < 3; ++i) {
+            const raster::Bernstein e = m_curved->edgeFunction((i + 1) % 3, m_ndc);
+            m_uNumerator = m_uNumerator + double(m_uv[std::size_t(i)].x) * e;
+            m_vNumerator = m_vNumerator + double(m_uv[std::size_t(i)].y) * e;
+            m_denominator = m_denominator + e;
+        }
+    }
+    return segment;
+}
+
+bool CurvedSurfacePoint::uvAt(float t, glm::vec2& uv) const {
+    const double u = select(t).localTime(t);
+    const double denominator = m_denominator(u);
+    if (denominator == 0.0 || !std::isfinite(denominator)) return false;
+    uv = glm::vec2(float(m_uNumerator(u) / denominator), float(m_vNumerator(u) / denominator));
+    return true;
+}
+
+bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) const {
+    const CurvedSegment& segment = select(t);
+    const raster::CurvedTriangle& curved = *m_curved;
     const double u = segment.localTime(t);
     const std::array<glm::dvec3, 3> corners = curved.cornersAt(u);
     const raster::HomogeneousSample s = raster::evaluateHomogeneousXyw(corners, m_ndc);

@@ -27,13 +27,21 @@ public:
                        const glm::dvec2& ndc, CurvedTriangleCache& cache);
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
+    // uv as a ratio of Bernstein polynomials: sum(uv_i E_opposite(u)) / sum(E(u)).
+    bool uvAt(float t, glm::vec2& uv) const override;
 
 private:
+    const CurvedSegment& select(float t) const;
+
     const CurvedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< one sample spacing in NDC
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
+    std::array<glm::vec2, 3> m_uv;
     CurvedTriangleCache& m_cache;
+    mutable const CurvedSegment* m_segment = nullptr;  ///< the piece the members below belong to
+    mutable const raster::CurvedTriangle* m_curved = nullptr;
+    mutable raster::Bernstein m_uNumerator, m_vNumerator, m_denominator;
 };
 
 // The mean shaded colour and opacity of a curved triangle over [t0, t1] at a sample.
