@@ -53,7 +53,7 @@ glm::dvec3 CurvedTriangle::corner(int i, double u) const {
     return c[0];
 }
 
-bool CurvedTriangle::missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments) const {
+bool CurvedTriangle::missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments, int* culledPieces) const {
     const glm::dvec3 p(centre, 1.0);
     const int degree = 2 * m_order;
     // Per edge and slefe piece: +1 provably positive, -1 provably negative, 0 unknown. A piece is
@@ -74,12 +74,14 @@ bool CurvedTriangle::missesRectangle(const glm::dvec2& centre, const glm::dvec2&
             else if (above.upper[a] < 0.0 && above.upper[b] < 0.0) sign[e][a] = -1;
         }
     }
+    int culled = 0;
     for (std::size_t i = 0; i < std::size_t(slefeSegments); ++i) {
         const bool hasPositive = sign[0][i] > 0 || sign[1][i] > 0 || sign[2][i] > 0;
         const bool hasNegative = sign[0][i] < 0 || sign[1][i] < 0 || sign[2][i] < 0;
-        if (!(hasPositive && hasNegative)) return false;
+        culled += hasPositive && hasNegative;
     }
-    return true;
+    if (culledPieces) *culledPieces += culled;
+    return culled == slefeSegments;
 }
 
 int CurvedTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, RootSolver solver,

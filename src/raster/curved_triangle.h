@@ -59,8 +59,9 @@ public:
     // point), and those two polynomials between their slefes. On a piece of the shutter where
     // one edge is provably positive and another provably negative, no point of the rectangle
     // is inside (inside means all three of one sign, either orientation). True when that
-    // holds on every piece: the triangle misses the rectangle for the whole shutter.
-    bool missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments = 4) const;
+    // holds on every piece: the triangle misses the rectangle for the whole shutter. Adds the
+    // pieces it proves missed (the culled time spans) to *culledPieces when given.
+    bool missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments = 4, int* culledPieces = nullptr) const;
 
 private:
     int m_order;

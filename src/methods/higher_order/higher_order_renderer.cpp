@@ -26,6 +26,7 @@ using exposure::ExposureInterval;
 
 constexpr int kTileSize = 16;
 constexpr int kMaxDepthSplits = 4;  ///< refined depth: levels of halving per span
+constexpr int kTilePieces = 4;      ///< TILE: slefe pieces of the shutter per block test
 
 enum class Traversal { BoundingBox, Interval, Tile };
 
@@ -49,7 +50,7 @@ struct Record {
 
 struct Counters {
     std::int64_t coverageTests = 0, coverageHits = 0, culledBackFacing = 0, depthSplits = 0, pixelsSkipped = 0, blockTests = 0,
-                 blocksCulled = 0;
+                 blocksCulled = 0, timePiecesTested = 0, timePiecesCulled = 0;
     raster::BernsteinRootCounts roots;
     double intervalSeconds = 0;
     exposure::SampleResolveCounters resolve;
@@ -109,6 +110,7 @@ public:
             total.coverageTests += c.coverageTests, total.coverageHits += c.coverageHits, total.culledBackFacing += c.culledBackFacing;
             total.depthSplits += c.depthSplits, total.pixelsSkipped += c.pixelsSkipped;
             total.blockTests += c.blockTests, total.blocksCulled += c.blocksCulled;
+            total.timePiecesTested += c.timePiecesTested, total.timePiecesCulled += c.timePiecesCulled;
             total.roots.add(c.roots);
             total.intervalSeconds += c.intervalSeconds;
             total.resolve.add(c.resolve);
@@ -127,6 +129,9 @@ public:
         stats.setCounter("pixels_skipped_by_intervals", double(total.pixelsSkipped));
         stats.setCounter("tile_tests", double(total.blockTests));
         stats.setCounter("tiles_culled", double(total.blocksCulled));
+        // TILE's culled time spans: the share of the blocks' slefe pieces of the shutter proved missed.
+        stats.setCounter("tile_time_culled_fraction",
+                         total.timePiecesTested > 0 ? double(total.timePiecesCulled) / double(total.timePiecesTested) : 0.0);
         stats.setCounter("roots_solves", double(total.roots.solves));
         stats.setCounter("roots_no_sign_change", double(total.roots.noSignChange));
         stats.setCounter("roots_found", double(total.roots.roots));
@@ -248,7 +253,10 @@ private:
                         // TILE: the block's samples lie in [bx, bx1 + 1) x [by, by1 + 1).
                         ++counters.blockTests;
                         const glm::dvec2 lo = raster::ndcFromRaster(bx, by1 + 1, width, height), hi = raster::ndcFromRaster(bx1 + 1, by, width, height);
-                        if (curved.missesRectangle(0.5 * (lo + hi), 0.5 * (hi - lo))) {
+                        int culledPieces = 0;
+                        const bool isMissed = curved.missesRectangle(0.5 * (lo + hi), 0.5 * (hi - lo), kTilePieces, &culledPieces);
+                        counters.timePiecesTested += kTilePieces, counters.timePiecesCulled += culledPieces;
+                        if (isMissed) {
                             ++counters.blocksCulled;
                             continue;
                         }

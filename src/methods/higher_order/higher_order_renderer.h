@@ -25,7 +25,8 @@ namespace streak {
 //   missed for the whole shutter). Each skips only samples the triangle never covers: the
 //   spans, and so the image, are the same.
 // - intervals: sub-intervals of generalized INTERVAL, 1 to 64 (8).
-// - tile: TILE's block side in pixels, 1, 2 or 4 (2).
+// - tile: TILE's block side in pixels, 1, 2 or 4 (2). Stats tiles_culled, and
+//   tile_time_culled_fraction: the share of the blocks' quarters of the shutter proved missed.
 // - solver: closed-form (default; Ferrari for quartics) or clipping (Bezier clipping).
 // - camera-order: order of the clip-space curves fitted to a moving camera's paths (3).
 // - depth-tolerance: refined depth splits an interval while its linear depth at mid-span is

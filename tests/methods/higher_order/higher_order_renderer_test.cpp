@@ -86,12 +86,13 @@ TEST(HigherOrderRenderer, IntervalAndTileTraversalLeaveTheImageBitIdentical) {
         sixteen.set("intervals", "16");
         for (const char* t : {"1", "4"}) {
             tile.set("tile", t);
-            for (const OptionMap& options : {sixteen, tile}) {
+            for (const auto& [options, isTile] : {std::pair{sixteen, false}, std::pair{tile, true}}) {
                 RenderStats culled;
                 const Image b = render("higher-order", scene, 80, 60, options, &culled);
                 for (int y = 0; y < 60; ++y)
                     for (int x = 0; x < 80; ++x) ASSERT_EQ(a.at(x, y), b.at(x, y)) << x << "," << y;
                 EXPECT_LT(culled.counter("coverage_tests"), box.counter("coverage_tests"));
+                if (isTile) EXPECT_GT(culled.counter("tile_time_culled_fraction"), 0.0);
                 EXPECT_GT(culled.counter("sample_test_efficiency"), box.counter("sample_test_efficiency"));
             }
         }
