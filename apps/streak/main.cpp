@@ -4,6 +4,7 @@
 #include "image/metrics.h"
 #include "methods/registry.h"
 #include "raster/clip.h"
+#include "scene/blur_shell.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera.h"
 #include "scene/gltf_writer.h"
@@ -208,6 +209,26 @@ std::string numberList(T... values) {
     return text;
 }
 
+// Loads the trail a method shows (blur-shell) instead of the shutter: a glTF scene over
+// [T - length, T], T = --frame / --fps, with one key pose per update time. The animation holds
+// its first pose before it starts, so a trail reaching back past 0 s moves only from there
+// (trail_before_start_seconds). Built-in scenes have no clock: their shutter is the trail.
+void applyTrail(const RenderArgs& args, const AnimationTrail& trail, const std::string& who, GltfOptions& gltf, RenderStats& stats) {
+    for (const auto& [flag, given] : {std::pair{"--shutter", args.shutter.has_value()}, std::pair{"--motion-keys", args.motionKeys.has_value()},
+                                      std::pair{"--motion-curve", args.motionCurve.has_value()}})
+        if (given) throw Error(std::string(flag) + " does not apply to " + who + ": its trail is length seconds with one key per update");
+    if (!isGltfSpec(args.scene)) {
+        stats.setInfo("trail", "the built-in scene's shutter");
+        return;
+    }
+    const double end = gltf.frame / gltf.fps;
+    gltf.frame -= trail.lengthSeconds * gltf.fps;
+    gltf.shutter = trail.lengthSeconds * gltf.fps;
+    gltf.motionKeys = trail.keys;
+    stats.setInfo("trail", numberList(end - trail.lengthSeconds, end) + " s");
+    stats.setCounter("trail_before_start_seconds", std::max(0.0, trail.lengthSeconds - end));
+}
+
 // The camera the scene was rendered through (glTF camera, explicit or framing; built-in), in the
 // scene's world (glTF: +y up): each pose's position and worldFromCamera rotation (w,x,y,z; the
 // camera looks down its -z with +y up), the vertical field of view and the near plane.
@@ -220,6 +241,21 @@ void reportCamera(const Camera& camera, RenderStats& stats) {
     }
     stats.setInfo("camera_vertical_fov_deg", numberList(glm::degrees(camera.verticalFov)));
     stats.setInfo("camera_znear", numberList(camera.zNear));
+}
+
+// The --option KEY=VALUE flags, into `options`.
+void addOptionFlags(const std::vector<std::string>& flags, OptionMap& options) {
+    for (const std::string& option : flags) {
+        const std::size_t equals = option.find('=');
+        if (equals == std::string::npos || equals == 0) throw Error("--option must be KEY=VALUE, got '" + option + "'");
+        options.set(option.substr(0, equals), option.substr(equals + 1));
+    }
+}
+
+std::string lowercaseExtension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
 }
 
 int runRender(const RenderArgs& args) {
@@ -250,20 +286,17 @@ int runRender(const RenderArgs& args) {
         {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}, {"gpu-memory", &args.gpuMemory}};
     for (const auto& [key, value] : methodFlags)
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
-    for (const std::string& option : args.options) {
-        const std::size_t equals = option.find('=');
-        if (equals == std::string::npos || equals == 0) throw Error("--option must be KEY=VALUE, got '" + option + "'");
-        methodOptions.set(option.substr(0, equals), option.substr(equals + 1));
-    }
+    addOptionFlags(args.options, methodOptions);
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
-    const GltfOptions gltf = gltfOptions(args);
+    GltfOptions gltf = gltfOptions(args);
+    RenderStats stats;
+    if (const std::optional<AnimationTrail> trail = renderer->animationTrail()) applyTrail(args, *trail, "method " + args.method, gltf, stats);
     checkWritable(args.output, true);
     if (!args.stats.empty()) checkWritable(args.stats, false);
 
     std::optional<tbb::global_control> threadLimit;
     if (args.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
 
-    RenderStats stats;
     Scene scene;
     SceneCleanup cleanup;
     {
@@ -343,14 +376,42 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
 }
 
 int runExport(const std::string& spec, const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (extension != ".glb") throw Error("cannot write " + path + ": export writes glTF binary (.glb) only");
+    if (lowercaseExtension(path) != ".glb") throw Error("cannot write " + path + ": export writes glTF binary (.glb) only");
     checkWritable(path, false);
     Scene scene = loadScene(spec, GltfOptions{}, nullptr);
     validateScene(scene);
     const std::vector<std::uint8_t> bytes = writeGltfBinary(scene);
     writeTextFile(path, std::string(bytes.begin(), bytes.end()));
+    return 0;
+}
+
+// `streak shell`: the blur shell at T = --frame / --fps and the mesh there, as glTF, so the
+// trail can be seen from any angle while the animation is paused (Jones 2004, section 3.3).
+int runShell(const RenderArgs& args) {
+    OptionMap options("shell");
+    addOptionFlags(args.options, options);
+    const BlurShellOptions shellOptions = BlurShellOptions::read(options);
+    options.rejectUnknown();
+    const std::string extension = lowercaseExtension(args.output);
+    if (extension != ".glb" && extension != ".gltf") throw Error("cannot write " + args.output + ": shell writes glTF (.glb or .gltf)");
+    checkWritable(args.output, false);
+    GltfOptions gltf = gltfOptions(args);
+    RenderStats stats;
+    applyTrail(args, AnimationTrail{shellOptions.lengthSeconds, shellOptions.subdivisions + 1}, "shell", gltf, stats);
+    Scene scene = loadScene(args.scene, gltf, &stats);
+    validateScene(scene);
+    const BlurShell shell = buildBlurShell(scene, shellOptions);
+    const ShellScene out = makeShellScene(scene, shell);
+    std::size_t triangles = 0;
+    for (std::size_t m = out.firstShellMesh; m < out.scene.meshes.size(); ++m) triangles += out.scene.meshes[m].triangles.size();
+    if (extension == ".gltf") {
+        writeTextFile(args.output, writeGltfText(out.scene));
+    } else {
+        const std::vector<std::uint8_t> bytes = writeGltfBinary(out.scene);
+        writeTextFile(args.output, std::string(bytes.begin(), bytes.end()));
+    }
+    std::cout << "shell: " << shell.numStrips << " strips, " << triangles << " triangles (" << shell.silhouetteEdges
+              << " silhouette edges at the last update) -> " << args.output << "\n";
     return 0;
 }
 
@@ -362,6 +423,28 @@ int runScenes() {
 int runMethods() {
     for (const MethodInfo& info : registeredMethods()) std::cout << info.name << "  " << info.description << "\n";
     return 0;
+}
+
+// The glTF flags (animation, sampling, camera) of the commands that load a scene.
+void addGltfFlags(CLI::App* app, RenderArgs& args) {
+    app->add_option("--frame", args.frame, "glTF: the shutter opens at this animation frame (0); blur-shell, shell: the trail ends here");
+    app->add_option("--shutter", args.shutter, "glTF: frames the shutter stays open (0.5)");
+    app->add_option("--fps", args.fps, "glTF: frames per second of animation time (24)");
+    app->add_option("--animation", args.animation, "glTF: animation name or index (the first)");
+    app->add_option("--motion-keys", args.motionKeys,
+                       "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
+    app->add_option("--motion-curve", args.motionCurve,
+                       "glTF: linear (piecewise linear keys) or bezier (the keys, 3 or 4, become the control points of the curve through them)");
+    app->add_option("--motion-fit-samples", args.motionFitSamples,
+                       "glTF, --motion-curve bezier: fit the curve by least squares to N evenly spaced poses (default 4 (K - 1) + 1 for --motion-keys K); 0: the curve through the K poses");
+    app->add_option("--key-tolerance", args.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");
+    app->add_option("--camera", args.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
+    app->add_option("--camera-pos", args.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");
+    app->add_option("--camera-target", args.cameraTarget, "glTF: explicit camera target x,y,z");
+    app->add_option("--camera-up", args.cameraUp, "glTF: explicit camera up x,y,z (0,1,0)");
+    app->add_option("--camera-pos-end", args.cameraPosEnd, "glTF: camera position at shutter close (moves linearly)");
+    app->add_option("--camera-target-end", args.cameraTargetEnd, "glTF: camera target at shutter close");
+    app->add_option("--fov", args.fov, "glTF: explicit camera vertical field of view in degrees (45)");
 }
 
 int run(int argc, char** argv) {
@@ -398,24 +481,7 @@ int run(int argc, char** argv) {
     render->add_option("--frames", renderArgs.frames, "render the frame this many times; times and counters are the last's (warm: GL programs built)")
         ->capture_default_str();
     render->add_option("--stats", renderArgs.stats, "write figures of the render (times, counters) as JSON to this file");
-    render->add_option("--frame", renderArgs.frame, "glTF: the shutter opens at this animation frame (0)");
-    render->add_option("--shutter", renderArgs.shutter, "glTF: frames the shutter stays open (0.5)");
-    render->add_option("--fps", renderArgs.fps, "glTF: frames per second of animation time (24)");
-    render->add_option("--animation", renderArgs.animation, "glTF: animation name or index (the first)");
-    render->add_option("--motion-keys", renderArgs.motionKeys,
-                       "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
-    render->add_option("--motion-curve", renderArgs.motionCurve,
-                       "glTF: linear (piecewise linear keys) or bezier (the keys, 3 or 4, become the control points of the curve through them)");
-    render->add_option("--motion-fit-samples", renderArgs.motionFitSamples,
-                       "glTF, --motion-curve bezier: fit the curve by least squares to N evenly spaced poses (default 4 (K - 1) + 1 for --motion-keys K); 0: the curve through the K poses");
-    render->add_option("--key-tolerance", renderArgs.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");
-    render->add_option("--camera", renderArgs.camera, "glTF: camera index (the first camera a node places; else the scene is framed from +z)");
-    render->add_option("--camera-pos", renderArgs.cameraPos, "glTF: explicit camera position x,y,z (--camera-pos=-1,2,3 for negatives)");
-    render->add_option("--camera-target", renderArgs.cameraTarget, "glTF: explicit camera target x,y,z");
-    render->add_option("--camera-up", renderArgs.cameraUp, "glTF: explicit camera up x,y,z (0,1,0)");
-    render->add_option("--camera-pos-end", renderArgs.cameraPosEnd, "glTF: camera position at shutter close (moves linearly)");
-    render->add_option("--camera-target-end", renderArgs.cameraTargetEnd, "glTF: camera target at shutter close");
-    render->add_option("--fov", renderArgs.fov, "glTF: explicit camera vertical field of view in degrees (45)");
+    addGltfFlags(render, renderArgs);
 
     std::string compareA, compareB, heatmap;
     double foregroundLevel = 2.0;
@@ -435,6 +501,17 @@ int run(int argc, char** argv) {
     exportCommand->add_option("scene", exportScene, "scene: builtin:NAME[?key=value&...] or a glTF file (its default shutter)")->required();
     exportCommand->add_option("output", exportPath, "output file (.glb)")->required();
 
+    RenderArgs shellArgs;
+    shellArgs.output = "shell.glb";
+    CLI::App* shellCommand = app.add_subcommand(
+        "shell", "write the blur shell (Jones 2004) at T = --frame / --fps and the mesh there as glTF 2.0, to view the trail from any angle");
+    shellCommand->add_option("scene", shellArgs.scene, "scene: builtin:NAME[?key=value&...] (its shutter is the trail) or a glTF file")->required();
+    shellCommand->add_option("-o,--output", shellArgs.output, "output file (.glb or .gltf)")->capture_default_str();
+    shellCommand->add_option("--option", shellArgs.options, "a blur-shell option KEY=VALUE: length, subdivisions, alpha, fade (repeatable)");
+    shellCommand->add_option("--width", shellArgs.width, "image width, for the aspect of a framing camera")->capture_default_str();
+    shellCommand->add_option("--height", shellArgs.height, "image height, for the aspect of a framing camera")->capture_default_str();
+    addGltfFlags(shellCommand, shellArgs);
+
     CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, one per line");
     CLI::App* methods = app.add_subcommand("methods", "list the motion-blur methods, one per line");
 
@@ -453,6 +530,7 @@ int run(int argc, char** argv) {
     if (render->parsed()) return runRender(renderArgs);
     if (compare->parsed()) return runCompare(compareA, compareB, heatmap, foregroundLevel);
     if (exportCommand->parsed()) return runExport(exportScene, exportPath);
+    if (shellCommand->parsed()) return runShell(shellArgs);
     if (scenes->parsed()) return runScenes();
     if (methods->parsed()) return runMethods();
     return kExitBadInput;

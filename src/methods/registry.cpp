@@ -3,6 +3,8 @@
 #include "methods/accumulation/accumulation_renderer.h"
 #include "methods/accumulation_gl/accumulation_gl_renderer.h"
 #include "methods/analytic/analytic_renderer.h"
+#include "methods/blur_shell/blur_shell_renderer.h"
+#include "methods/blur_shell_gl/blur_shell_gl_renderer.h"
 #include "methods/higher_order/higher_order_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
@@ -25,6 +27,8 @@ const std::array kMethods{
                createAnalyticRenderer},
     MethodInfo{"higher-order", "higher-order motion (Gribel et al. 2013): Bezier vertex paths, edge equations of degree 2n solved exactly, INTERVAL traversal",
                createHigherOrderRenderer},
+    MethodInfo{"blur-shell", "blur shell (Jones 2004): silhouette-of-motion trails as alpha-faded quad strips, geometry drawn over the mesh at the trail's end",
+               createBlurShellRenderer},
     MethodInfo{"accumulation", "reference: averages depth-buffered renders at S stratified shutter times (samples=256)",
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
@@ -35,6 +39,8 @@ const std::array kMethods{
                createAccumulationGlRenderer},
     MethodInfo{"stochastic-gl", "stochastic rasterization on the GPU (OpenGL 4.5): per-sample times, space-time bounds (samples=8)",
                createStochasticGlRenderer},
+    MethodInfo{"blur-shell-gl", "blur shell on the GPU (OpenGL 4.5): the shell built on the CPU, drawn over the mesh by the blender in submission order",
+               createBlurShellGlRenderer},
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "util/stats.h"
 
 #include <cstdint>
+#include <optional>
 
 namespace streak {
 
@@ -27,6 +28,14 @@ struct RenderContext {
     ProgressReporter* progress = nullptr;      ///< may be null
 };
 
+// The stretch of animation a method shows when it is not a shutter average: the trail of the
+// lengthSeconds before the frame's time T, sampled by `keys` poses evenly spaced from T - length
+// to T. The caller loads an animated scene (glTF) over that stretch, so the shutter is the trail.
+struct AnimationTrail {
+    double lengthSeconds = 0.0;
+    int keys = 2;
+};
+
 // Renderer is one motion-blur method: it turns a validated scene into a linear-light image of
 // the whole shutter interval [0, 1]. Implementations live in src/methods/<name>/, are created by
 // name through the registry, and use only scene/, raster/, image/ and gpu/: never each other.
@@ -37,6 +46,9 @@ public:
     // Renders `scene` (already validated) at settings.width x settings.height. Throws Error
     // for settings the method cannot honour.
     virtual Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) = 0;
+
+    // The trail the method needs loaded instead of the shutter (blur-shell); none by default.
+    virtual std::optional<AnimationTrail> animationTrail() const { return std::nullopt; }
 };
 
 }  // namespace streak

@@ -40,6 +40,25 @@ struct LocalGeometry {
         triangles.push_back({base, base + 1, base + 2});
         triangles.push_back({base, base + 2, base + 3});
     }
+    // A unit UV sphere of `rings` x `slices` cells, vertices shared (smooth normals), uvs
+    // spanning uvScale; the poles' rings meet in a point, so it has 2 slices (rings - 1) triangles.
+    void addSphere(int rings, int slices, glm::vec2 uvScale) {
+        const auto base = std::uint32_t(positions.size());
+        for (int r = 0; r <= rings; ++r)
+            for (int k = 0; k <= slices; ++k) {
+                const float theta = kPi * float(r) / float(rings), phi = 2.0f * kPi * float(k) / float(slices);
+                const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+                positions.push_back(n), normals.push_back(n);
+                uvs.push_back(glm::vec2(float(k) / float(slices), float(r) / float(rings)) * uvScale);
+            }
+        for (int r = 0; r < rings; ++r)
+            for (int k = 0; k < slices; ++k) {
+                const auto a = base + std::uint32_t(r * (slices + 1) + k), b = a + 1, c = a + std::uint32_t(slices + 1), d = c + 1;
+                // Counter-clockwise seen from outside: b lies towards -x of a at the front.
+                if (r > 0) triangles.push_back({a, b, c});
+                if (r + 1 < rings) triangles.push_back({b, d, c});
+            }
+    }
     // An axis-aligned box with half extents h, each face uv-mapped to the whole texture.
     void addBox(const glm::vec3& c, const glm::vec3& h) {
         const glm::vec3 x(h.x, 0, 0), y(0, h.y, 0), z(0, 0, h.z);
@@ -427,20 +446,7 @@ Scene makeClothball(OptionMap& options) {
 
     // The ball: a static UV sphere of radius 1.
     LocalGeometry ball;
-    const int rings = 24, slices = 48;
-    for (int r = 0; r <= rings; ++r)
-        for (int k = 0; k <= slices; ++k) {
-            const float theta = kPi * float(r) / float(rings), phi = 2.0f * kPi * float(k) / float(slices);
-            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-            ball.positions.push_back(n), ball.normals.push_back(n);
-            ball.uvs.push_back({float(k) / float(slices) * 4.0f, float(r) / float(rings) * 2.0f});
-        }
-    for (int r = 0; r < rings; ++r)
-        for (int k = 0; k < slices; ++k) {
-            const auto a = std::uint32_t(r * (slices + 1) + k), b = a + 1, c = a + std::uint32_t(slices + 1), d = c + 1;
-            if (r > 0) ball.triangles.push_back({a, c, b});  // the poles' rings meet in a point
-            if (r + 1 < rings) ball.triangles.push_back({b, c, d});
-        }
+    ball.addSphere(24, 48, glm::vec2(4.0f, 2.0f));
     scene.meshes.push_back(placeMesh(ball, "ball", 1, 2, [](float t) { return staticAt(glm::mat4(1.0f), t); }));
 
     // The sheet, deforming: each vertex is a function of its grid point and t.
@@ -487,16 +493,47 @@ Scene makeClothball(OptionMap& options) {
     return scene;
 }
 
+// A UV sphere of about `triangles` triangles (960; rings r and 2r slices, 4r(r - 1) in all)
+// translating along +x by `travel` radii (1.5) over the shutter, over a static backdrop: the
+// thesis' Table 2 sphere, whose silhouette of motion is the great circle facing +x. squash=A
+// (0) deforms it as it goes, stretched along x and flattened along y by A at shutter close.
+Scene makeSphere(OptionMap& options) {
+    const MotionKeys keys = motionKeysOption(options);
+    const int wanted = options.getInt("triangles", 960, 24, 1 << 20);
+    const float travel = float(options.getDouble("travel", 1.5, 0.0, 100.0));
+    const float squash = float(options.getDouble("squash", 0.0, 0.0, 0.9));
+    // About half a vertex per triangle per key: four million triangle poses are about 100 MB.
+    constexpr long long kMaxTrianglePoses = 4000000;
+    if (static_cast<long long>(wanted) * keys.count > kMaxTrianglePoses)
+        throw Error("scene 'sphere': triangles * keys must be at most " + std::to_string(kMaxTrianglePoses) + ", got " +
+                    std::to_string(wanted) + " * " + std::to_string(keys.count));
+    const int rings = std::max(3, int(std::lround(0.5 + std::sqrt(0.25 + double(wanted) / 4.0))));
+    Scene scene = defaultSceneFrame("sphere");
+    scene.textures.push_back(checkerTexture(256, 8, {240, 240, 240}, {40, 110, 200}));
+    scene.textures.push_back(gridTexture(128, 8, {110, 115, 125}, {55, 58, 66}));
+    scene.materials = {texturedMaterial("sphere", glm::vec3(1.0f), 0), texturedMaterial("backdrop", glm::vec3(1.0f), 1)};
+    setStaticCamera(scene, glm::vec3(0.0f, 0.8f, 6.0f), glm::vec3(0.0f));
+    scene.meshes.push_back(backdrop(glm::vec3(0.0f, 0.0f, -2.0f), 7.0f, 5.0f, 1, 3.0f));
+    LocalGeometry sphere;
+    sphere.addSphere(rings, 2 * rings, glm::vec2(4.0f, 2.0f));
+    scene.meshes.push_back(placeMesh(sphere, "sphere", 0, keys, [travel, squash](float t) {
+        const glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::vec3(travel * (t - 0.5f), 0.0f, 0.0f));
+        return glm::scale(m, glm::vec3(1.0f + squash * t, 1.0f - squash * t, 1.0f));
+    }));
+    return scene;
+}
+
 struct BuiltinScene {
     BuiltinSceneInfo info;
     Scene (*make)(OptionMap&);
 };
 
-const std::array<BuiltinScene, 9> kScenes{{
+const std::array<BuiltinScene, 10> kScenes{{
     {{"cubes", "n random textured cubes moving and rotating (Hong & Oh); options n=1000, seed=1, keys=2, curve=linear"}, makeCubes},
     {{"rotating-cube", "one textured cube rotating about x, y and z; options keys=2, curve=linear, speed=1"}, makeRotatingCube},
     {{"spin", "a textured triangle and quad turning about the view axis (Gribel 2013); options angle=120, keys=2, curve=linear"}, makeSpin},
     {{"clothball", "a cloth sheet swung fast around a ball, closing in; options cells=24, angle=150, keys=2, curve=linear"}, makeClothball},
+    {{"sphere", "a UV sphere translating along +x over a backdrop (Jones 2004, Table 2); options triangles=960, travel=1.5, squash=0, keys=2, curve=linear"}, makeSphere},
     {{"crossing", "two triangles passing through each other in depth"}, makeCrossing},
     {{"twist", "a triangle flipping over, its t=0 and t=1 projections crossing"}, makeTwist},
     {{"fence", "thin bars moving fast over a textured wall; options bars=12, travel=0.3"}, makeFence},

@@ -190,4 +190,8 @@ DecodedImage decodeImage(const Document& document, int index, const DocumentLimi
     return decoded;
 }
 
+std::string base64(std::span<const std::uint8_t> bytes) {
+    return tinygltf::base64_encode(bytes.data(), static_cast<unsigned int>(bytes.size()));
+}
+
 }  // namespace streak::gltf

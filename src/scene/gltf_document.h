@@ -36,6 +36,9 @@ struct Document {
 // problem (the caller adds the file name).
 Document parseDocument(std::span<const std::uint8_t> bytes, const std::string& baseDir, const DocumentLimits& limits);
 
+// Bytes as base64 (tinygltf's encoder), for data: uris.
+std::string base64(std::span<const std::uint8_t> bytes);
+
 // Reads a whole regular file of at most maxBytes; Error otherwise.
 std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t maxBytes);
 

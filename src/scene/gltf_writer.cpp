@@ -1,6 +1,7 @@
 #include "scene/gltf_writer.h"
 
 #include "image/color.h"
+#include "scene/gltf_document.h"
 #include "util/error.h"
 
 #include <glm/common.hpp>
@@ -107,6 +108,13 @@ public:
         return out;
     }
 
+    // The document as .gltf text, the buffer inlined as a data: uri.
+    std::string finishText() {
+        while (m_bin.size() % 4 != 0) m_bin.push_back(0);
+        doc["buffers"].push_back({{"byteLength", m_bin.size()}, {"uri", "data:application/octet-stream;base64," + gltf::base64(m_bin)}});
+        return doc.dump();
+    }
+
 private:
     std::vector<std::uint8_t> m_bin;
 };
@@ -152,8 +160,9 @@ json quaternion(const glm::quat& q) { return {q.x, q.y, q.z, q.w}; }  // glTF or
 
 }  // namespace
 
-std::vector<std::uint8_t> writeGltfBinary(const Scene& scene) {
-    GlbBuilder b;
+namespace {
+
+void buildDocument(const Scene& scene, GlbBuilder& b) {
     json nodes = json::array(), meshes = json::array(), samplers = json::array(), channels = json::array();
 
     // Camera first, so a loader's default (the first camera a node places) is this one.
@@ -254,7 +263,20 @@ std::vector<std::uint8_t> writeGltfBinary(const Scene& scene) {
     }
     if (!channels.empty())
         b.doc["animations"] = json::array({{{"name", "shutter"}, {"samplers", samplers}, {"channels", channels}}});
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> writeGltfBinary(const Scene& scene) {
+    GlbBuilder b;
+    buildDocument(scene, b);
     return b.finish();
+}
+
+std::string writeGltfText(const Scene& scene) {
+    GlbBuilder b;
+    buildDocument(scene, b);
+    return b.finishText();
 }
 
 }  // namespace streak

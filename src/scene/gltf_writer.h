@@ -3,6 +3,7 @@
 #include "scene/scene.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace streak {
@@ -25,5 +26,8 @@ namespace streak {
 // The light and the background have no glTF equivalent and are left out. Meshes with Bezier
 // keys cannot be written this way: Error.
 std::vector<std::uint8_t> writeGltfBinary(const Scene& scene);
+
+// The same document as glTF text (.gltf), its buffer inlined as a base64 data: uri.
+std::string writeGltfText(const Scene& scene);
 
 }  // namespace streak

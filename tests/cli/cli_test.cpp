@@ -74,7 +74,7 @@ TEST(Cli, ScenesListsEveryBuiltinSceneOnePerLine) {
     test::TempDir dir;
     const RunResult r = runStreak(dir, "scenes");
     EXPECT_EQ(r.exitCode, 0);
-    EXPECT_EQ(countLines(r.out), 9);
+    EXPECT_EQ(countLines(r.out), 10);
     for (const char* name : {"cubes", "rotating-cube", "spin", "clothball", "crossing", "twist", "fence", "pan", "translucent"})
         EXPECT_NE(r.out.find(std::string("builtin:") + name + " "), std::string::npos) << name;
 }
@@ -188,6 +188,16 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"unknown output format", "render " + ok + "-o " + dir.file("out.jpg")},
         {"unwritable stats", "render " + ok + "-o " + out + " --stats " + dir.file("no/such/stats.json")},
         {"unknown flag", "render " + ok + "--frobnicate -o " + out},
+        {"blur shell of no subdivisions", "render builtin:sphere -m blur-shell --option subdivisions=0 -o " + out},
+        {"blur shell of no length", "render builtin:sphere -m blur-shell --option length=0 -o " + out},
+        {"blur shell alpha above 1", "render builtin:sphere -m blur-shell-gl --option alpha=2 -o " + out},
+        {"unknown blur shell blend", "render builtin:sphere -m blur-shell --option blend=additive -o " + out},
+        {"shutter on a blur shell", "render " + triangle + " -m blur-shell --shutter 2 -o " + out},
+        {"motion keys on a blur shell", "render " + triangle + " -m blur-shell --motion-keys 3 -o " + out},
+        {"shell to an image", "shell builtin:sphere -o " + dir.file("shell.png")},
+        {"shell option it does not take", "shell builtin:sphere --option blend=sorted -o " + dir.file("shell.glb")},
+        {"shell of no subdivisions", "shell builtin:sphere --option subdivisions=0 -o " + dir.file("shell.glb")},
+        {"shell into a missing folder", "shell builtin:sphere -o " + dir.file("no/such/shell.glb")},
         {"compare missing file", "compare " + dir.file("a.png") + " " + dir.file("b.png")},
         {"no subcommand", ""},
     };
@@ -225,6 +235,43 @@ TEST(Cli, RendersASampleModelWithItsOwnCamera) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Image image = readImage(dir.file("cube.png"));
     EXPECT_GT(image.at(24, 16).x, 0.05f);  // the cube fills the middle
+}
+
+TEST(Cli, RendersTheBlurShellAndExportsItAsGltfThatLoadsBack) {
+    test::TempDir dir;
+    const std::string size = " --width 64 --height 48 ";
+    const RunResult r = runStreak(dir, "render builtin:sphere -m blur-shell" + size + "-o " + dir.file("shell.png") + " --stats " + dir.file("s.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(readFile(dir.file("s.json")));
+    const double shellTriangles = stats["counters"]["shell_triangles"];
+    EXPECT_GT(shellTriangles, 100.0);
+    EXPECT_GT(double(stats["counters"]["silhouette_edges"]), 10.0);
+    EXPECT_TRUE(stats["time_ms"].contains("silhouette"));
+    EXPECT_TRUE(stats["time_ms"].contains("shell build"));
+    for (const char* file : {"shell.glb", "shell.gltf"}) {
+        const RunResult exported = runStreak(dir, std::string("shell builtin:sphere -o ") + dir.file(file));
+        ASSERT_EQ(exported.exitCode, 0) << exported.err;
+        EXPECT_NE(exported.out.find(std::to_string(int(shellTriangles)) + " triangles"), std::string::npos) << exported.out;
+        const RunResult loaded = runStreak(dir, "render " + dir.file(file) + " -m accumulation --samples 1" + size + "-o " + dir.file("back.png") +
+                                                    " --stats " + dir.file("back.json"));
+        ASSERT_EQ(loaded.exitCode, 0) << loaded.err;
+        const nlohmann::json back = nlohmann::json::parse(readFile(dir.file("back.json")));
+        EXPECT_EQ(double(back["counters"]["triangles"]), double(stats["counters"]["triangles"]) + shellTriangles) << file;
+    }
+}
+
+// A trail reaching back before the animation starts: the animation holds its first pose there,
+// so it moves only from 0 s, and the stats say how much of the trail came before.
+TEST(Cli, ABlurShellTrailBeforeTheAnimationStartsIsClampedWithAStatsNote) {
+    test::TempDir dir;
+    test::TempDir inputs;
+    writeFile(inputs.file("triangle.glb"), slidingTriangle().glb());
+    const RunResult r = runStreak(dir, "render " + inputs.file("triangle.glb") + " -m blur-shell --frame 2 --fps 24 --width 32 --height 24 -o " +
+                                           dir.file("a.png") + " --stats " + dir.file("a.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(readFile(dir.file("a.json")));
+    EXPECT_NEAR(double(stats["counters"]["trail_before_start_seconds"]), 0.2 - 2.0 / 24.0, 1e-9);
+    EXPECT_EQ(double(stats["counters"]["motion_keys"]), 11.0);  // one per update
 }
 
 TEST(Cli, CompareGivesInfinityForIdenticalAndTheHandComputedPsnr) {

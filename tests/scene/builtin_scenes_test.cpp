@@ -7,7 +7,7 @@
 namespace streak {
 
 TEST(BuiltinScenes, AllBuildValidAndDeterministic) {
-    ASSERT_EQ(builtinScenes().size(), 9u);
+    ASSERT_EQ(builtinScenes().size(), 10u);
     for (const BuiltinSceneInfo& info : builtinScenes()) {
         SCOPED_TRACE(std::string(info.name));
         Scene a = makeBuiltinScene(info.name, OptionMap());
@@ -31,6 +31,35 @@ TEST(BuiltinScenes, CubesRejectsMorePosesThanItsBudget) {
         FAIL() << "expected an Error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("n * keys must be at most 2000000"), std::string::npos) << e.what();
+    }
+}
+
+TEST(BuiltinScenes, SphereRejectsMorePosesThanItsBudget) {
+    OptionMap huge;
+    huge.set("triangles", "1000000");
+    huge.set("keys", "8");
+    EXPECT_THROW(makeBuiltinScene("sphere", huge), Error);
+}
+
+// sphere: about `triangles` triangles (4 r (r - 1) for r rings), a closed unit sphere wound
+// counter-clockwise seen from outside, translating by `travel` along +x.
+TEST(BuiltinScenes, SphereIsAClosedUnitSphereTranslatingAlongX) {
+    OptionMap options;
+    options.set("triangles", "3968");
+    options.set("travel", "2");
+    Scene scene = makeBuiltinScene("sphere", options);
+    validateScene(scene);
+    const Mesh& sphere = scene.meshes.back();
+    EXPECT_EQ(sphere.triangles.size(), 3968u);  // r = 32
+    const std::size_t n = sphere.numVertices();
+    for (std::size_t v = 0; v < n; ++v) {
+        EXPECT_NEAR(glm::length(sphere.positions[v] - glm::vec3(-1.0f, 0.0f, 0.0f)), 1.0f, 1e-5f);
+        EXPECT_NEAR(sphere.positions[n + v].x - sphere.positions[v].x, 2.0f, 1e-5f);
+    }
+    for (const glm::uvec3& tri : sphere.triangles) {
+        const glm::vec3 a = sphere.positions[tri.x], b = sphere.positions[tri.y], c = sphere.positions[tri.z];
+        const glm::vec3 outward = (a + b + c) / 3.0f - glm::vec3(-1.0f, 0.0f, 0.0f);
+        EXPECT_GT(glm::dot(glm::cross(b - a, c - a), outward), 0.0f);  // front faces outside
     }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 
 #include <glm/vec3.hpp>
@@ -7,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace streak::test {
 
@@ -25,6 +27,13 @@ struct PixelCamera {
     float worldY(float rasterY) const { return (1.0f - 2.0f * rasterY / float(height)) * depth; }
     glm::vec3 at(float rasterX, float rasterY) const { return {worldX(rasterX), worldY(rasterY), -depth}; }
 };
+
+// A built-in scene with its options, validated as the command line would.
+inline Scene validBuiltin(const std::string& name, OptionMap options = {}) {
+    Scene scene = makeBuiltinScene(name, std::move(options));
+    validateScene(scene);
+    return scene;
+}
 
 inline Scene emptyScene(glm::vec3 background = glm::vec3(0.0f)) {
     Scene scene;

@@ -5,6 +5,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 #include "support/render.h"
+#include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -14,11 +15,7 @@
 namespace streak {
 namespace {
 
-Scene builtin(const std::string& name, OptionMap options = {}) {
-    Scene scene = makeBuiltinScene(name, std::move(options));
-    validateScene(scene);
-    return scene;
-}
+Scene builtin(const std::string& name, OptionMap options = {}) { return test::validBuiltin(name, std::move(options)); }
 
 TEST(GlContext, NamesItsRendererAndVersion) {
     const gpu::GlContext& gl = gpu::sharedContext();
@@ -141,6 +138,36 @@ TEST(MotionPathGl, PastTheMemoryCapAppliesAPerSampleBudgetAndCountsTheOverflow) 
     EXPECT_GT(stats.counter("fragment_overflow_spans"), 0.0);
     EXPECT_GE(psnr(capped, cpu), 25.0);
     EXPECT_LT(psnr(capped, cpu), 45.0);
+}
+
+// blur-shell-gl draws the CPU's shell with the GPU's blender: the same image, in submission order
+// and sorted, on a rigid and a deforming sphere, lit.
+class BlurShellGlAgreement : public testing::TestWithParam<std::pair<std::string, std::string>> {};
+
+TEST_P(BlurShellGlAgreement, MatchesCpuBlurShell) {
+    const auto& [squash, blend] = GetParam();
+    const Scene scene = builtin("sphere", test::withOption("squash", squash));
+    RenderStats gpuStats, cpuStats;
+    const OptionMap options = test::withOption("blend", blend);
+    const Image gl = test::render("blur-shell-gl", scene, 96, 72, options, &gpuStats, ShadingMode::Phong);
+    const Image cpu = test::render("blur-shell", scene, 96, 72, options, &cpuStats, ShadingMode::Phong, 1, true);
+    EXPECT_GE(psnr(gl, cpu), 58.0);
+    EXPECT_GT(cpuStats.counter("shell_triangles"), 100.0);
+    EXPECT_EQ(gpuStats.counter("shell_triangles"), cpuStats.counter("shell_triangles"));
+    EXPECT_EQ(gpuStats.counter("translucent_layer_overflow_samples"), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Spheres, BlurShellGlAgreement,
+                         testing::Values(std::pair{std::string("0"), std::string("ordered")}, std::pair{std::string("0"), std::string("sorted")},
+                                         std::pair{std::string("0.4"), std::string("ordered")}));
+
+// Order matters: blended in submission order and sorted, the images differ (the test above
+// could not tell them apart otherwise).
+TEST(BlurShellGl, OrderedAndSortedBlendingDiffer) {
+    const Scene scene = builtin("sphere");
+    const Image ordered = test::render("blur-shell-gl", scene, 96, 72, test::withOption("blend", "ordered"), nullptr, ShadingMode::Phong);
+    const Image sorted = test::render("blur-shell-gl", scene, 96, 72, test::withOption("blend", "sorted"), nullptr, ShadingMode::Phong);
+    EXPECT_LT(psnr(ordered, sorted), 55.0);  // and more than 58 dB from the CPU's twin
 }
 
 }  // namespace

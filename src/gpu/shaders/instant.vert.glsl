@@ -1,5 +1,5 @@
-// accumulation-gl: the scene at shutter time u_time, pulled from the scene buffers by vertex
-// index (three per triangle), transformed as the CPU's accumulation does.
+// The scene at shutter time u_time (gpu::InstantPasses), pulled from the scene buffers by vertex
+// index (three per triangle), transformed as the CPU's exposure::InstantFrame does.
 uniform float u_time;
 
 out vec3 v_position;

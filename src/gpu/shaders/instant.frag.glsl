@@ -1,6 +1,8 @@
-// accumulation-gl: shades a fragment at u_time. Opaque pass (TRANSLUCENT_PASS 0): writes the
-// colour, depth tested. Translucent pass: appends (colour, alpha, depth) to the sample's list,
-// behind the opaque depth test (early tests, so hidden fragments append nothing).
+// The scene at one instant (gpu::InstantPasses): shades a fragment at u_time. Opaque pass
+// (TRANSLUCENT_PASS 0, BLEND_PASS 0): writes the colour and 1/w, depth tested. Translucent pass:
+// appends (colour, alpha, depth) to the sample's list, behind the opaque depth test (early
+// tests, so hidden fragments append nothing). Blend pass (BLEND_PASS 1): writes colour and
+// alpha for fixed-function blending in submission order (the blur shell as Jones draws it).
 uniform float u_time;
 
 in vec3 v_position;
@@ -9,9 +11,10 @@ in vec2 v_uv;
 in vec4 v_color;
 flat in uint v_triangle;
 
-#if TRANSLUCENT_PASS
+#if TRANSLUCENT_PASS || BLEND_PASS
 layout(early_fragment_tests) in;
-#else
+#endif
+#if !TRANSLUCENT_PASS
 layout(location = 0) out vec4 o_color;
 #endif
 
@@ -20,7 +23,7 @@ void main() {
     uint m = t.w & kMaterialMask;
     bool isDoubleSided = (t.w & ~kMaterialMask) != 0u;
     if (!gl_FrontFacing && !isDoubleSided) discard;
-#if TRANSLUCENT_PASS
+#if TRANSLUCENT_PASS || BLEND_PASS
     if (!isTranslucentMaterial(m)) discard;
 #else
     if (isTranslucentMaterial(m)) discard;
@@ -45,6 +48,8 @@ void main() {
     ivec2 s = ivec2(gl_FragCoord.xy);
     uint index, next;
     if (appendNode(s, index, next)) nodes[index] = TranslucentNode(shaded, gl_FragCoord.w, next);
+#elif BLEND_PASS
+    o_color = shaded;
 #else
     o_color = vec4(shaded.rgb, gl_FragCoord.w);
 #endif
