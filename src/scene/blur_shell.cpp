@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -17,6 +18,9 @@ BlurShellOptions BlurShellOptions::read(OptionMap& options) {
     o.subdivisions = options.getInt("subdivisions", o.subdivisions, 1, kMaxSubdivisions);
     o.alpha = float(options.getDouble("alpha", o.alpha, 0.0, 1.0));
     o.fade = options.getInt("fade", o.fade, 1, 64);
+    const std::string facing = options.getString("facing", "welded");
+    if (facing != "welded" && facing != "mesh") throw Error(options.owner() + ": facing must be welded or mesh, got '" + facing + "'");
+    o.isFacingWelded = facing == "welded";
     return o;
 }
 
@@ -41,12 +45,50 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // A mesh's vertices at update i of s (shutter time i / s): its keys themselves when there is one
-// per update, so a trail loaded over [T - length, T] is used as sampled.
+// per update, so a trail loaded over [T - length, T] is used as sampled. `facing` is what the
+// SoM classifies by, `normals` what shades.
 struct Pose {
-    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec3> positions, normals, facing;
 };
 
-void poseAt(const Mesh& mesh, int i, int s, Pose& pose) {
+// Vertices at one position share an id (runs of equal positions, by sorting): the welded mesh.
+std::vector<std::uint32_t> weldedVertices(std::span<const glm::vec3> positions) {
+    std::vector<std::uint32_t> order(positions.size());
+    for (std::uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+    auto less = [&](std::uint32_t a, std::uint32_t b) {
+        const glm::vec3 &p = positions[a], &q = positions[b];
+        return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+    };
+    std::sort(order.begin(), order.end(), less);
+    std::vector<std::uint32_t> weld(positions.size());
+    std::uint32_t id = 0;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        if (i > 0 && positions[order[i]] != positions[order[i - 1]]) ++id;
+        weld[order[i]] = id;
+    }
+    return weld;
+}
+
+// Area-weighted mean polygon normals per weld id (identity ids: per vertex), normalized.
+void meanPolygonNormals(const Mesh& mesh, std::span<const glm::vec3> positions, std::span<const std::uint32_t> weld,
+                        std::vector<glm::vec3>& normals) {
+    std::vector<glm::vec3> sum(positions.size(), glm::vec3(0.0f));
+    for (const glm::uvec3& tri : mesh.triangles) {
+        const glm::vec3 n = glm::cross(positions[tri.y] - positions[tri.x], positions[tri.z] - positions[tri.x]);
+        for (int c = 0; c < 3; ++c) sum[weld.empty() ? tri[c] : weld[tri[c]]] += n;
+    }
+    normals.resize(positions.size());
+    for (std::size_t v = 0; v < positions.size(); ++v) normals[v] = sum[weld.empty() ? v : weld[v]];
+}
+
+void normalize(std::vector<glm::vec3>& normals) {
+    for (glm::vec3& normal : normals) {
+        const float length = glm::length(normal);
+        if (length > 0.0f && std::isfinite(length)) normal /= length;
+    }
+}
+
+void poseAt(const Mesh& mesh, int i, int s, Pose& pose, std::span<const std::uint32_t> weld = {}) {
     const std::size_t n = mesh.numVertices();
     pose.positions.resize(n);
     pose.normals.assign(n, glm::vec3(0.0f));
@@ -65,14 +107,13 @@ void poseAt(const Mesh& mesh, int i, int s, Pose& pose) {
     }
     // Without normals, each vertex takes the area-weighted mean of its polygons' (the thesis'
     // choice: a polygon whose vertex normals agree can make no SoM).
-    if (!mesh.hasNormals())
-        for (const glm::uvec3& tri : mesh.triangles) {
-            const glm::vec3 n3 = glm::cross(pose.positions[tri.y] - pose.positions[tri.x], pose.positions[tri.z] - pose.positions[tri.x]);
-            for (int c = 0; c < 3; ++c) pose.normals[tri[c]] += n3;
-        }
-    for (glm::vec3& normal : pose.normals) {
-        const float length = glm::length(normal);
-        if (length > 0.0f && std::isfinite(length)) normal /= length;
+    if (!mesh.hasNormals()) meanPolygonNormals(mesh, pose.positions, {}, pose.normals);
+    normalize(pose.normals);
+    if (weld.empty()) {
+        pose.facing = pose.normals;
+    } else {
+        meanPolygonNormals(mesh, pose.positions, weld, pose.facing);
+        normalize(pose.facing);
     }
 }
 
@@ -146,9 +187,10 @@ BlurShell buildBlurShell(const Scene& scene, const BlurShellOptions& options) {
         SilhouetteOfMotion som(mesh.triangles, s);
         Pose previous, current;
         poseAt(mesh, 0, s, previous);
+        const std::vector<std::uint32_t> weld = options.isFacingWelded ? weldedVertices(previous.positions) : std::vector<std::uint32_t>{};
         for (int i = 1; i <= s; ++i) {
-            poseAt(mesh, i, s, current);
-            const std::size_t edges = som.update(previous.positions, current.positions, current.normals);
+            poseAt(mesh, i, s, current, weld);
+            const std::size_t edges = som.update(previous.positions, current.positions, current.facing, current.normals);
             edgesOverUpdates += double(edges);
             if (i == s) shell.silhouetteEdges += edges;
             std::swap(previous, current);

@@ -16,9 +16,15 @@ struct BlurShellOptions {
     int subdivisions = 10;       ///< SoM updates over the trail, length / subdivisions apart
     float alpha = 0.5f;          ///< the alpha of a strip at the mesh
     int fade = 3;                ///< updates a strip survives after its polygon leaves the SoM
+    // How vertices face: welded (the area-weighted mean normal of every polygon around the
+    // vertex's position, so a flat-shaded mesh whose polygons have their own vertices still has
+    // a silhouette of motion: the thesis' advice) or the mesh's own normals. Shell vertices
+    // keep the mesh's normals either way, for shading.
+    bool isFacingWelded = true;
 
     static constexpr int kMaxSubdivisions = 128;
-    // length (seconds, > 0), subdivisions (1 to 128), alpha ([0, 1]), fade (1 to 64).
+    // length (seconds, > 0), subdivisions (1 to 128), alpha ([0, 1]), fade (1 to 64),
+    // facing (welded or mesh).
     static BlurShellOptions read(OptionMap& options);
     // The renderers' blend option: ordered (false; the thesis: submission order, no depth
     // writes) or sorted (true: order independent, with the scene's translucent surfaces).

@@ -21,12 +21,12 @@ ShellEdge SilhouetteOfMotion::edgeAt(std::array<std::uint32_t, 2> vertices, std:
 }
 
 std::size_t SilhouetteOfMotion::update(std::span<const glm::vec3> previous, std::span<const glm::vec3> positions,
-                                       std::span<const glm::vec3> normals) {
+                                       std::span<const glm::vec3> facingNormals, std::span<const glm::vec3> normals) {
     m_updateIndex = (m_updateIndex + 1) % m_subdivisions;
     ++m_numUpdates;
     m_facing.resize(positions.size());
     tbb::parallel_for(std::size_t(0), positions.size(), [&](std::size_t v) {
-        const float d = glm::dot(normals[v], positions[v] - previous[v]);
+        const float d = glm::dot(facingNormals[v], positions[v] - previous[v]);
         m_facing[v] = d > 0.0f ? 1 : d < 0.0f ? -1 : 0;
     });
     std::atomic<std::size_t> numOnSilhouette{0};

@@ -44,10 +44,15 @@ public:
 
     SilhouetteOfMotion(std::span<const glm::uvec3> triangles, int subdivisions);
 
-    // One SoM update from the previous update's positions to the current positions and normals
-    // (mesh vertex order). Returns the number of polygons with an edge on the SoM.
+    // One SoM update from the previous update's positions to the current positions (mesh vertex
+    // order): vertices face by facingNormals, edges are recorded with `normals` (for shading).
+    // Returns the number of polygons with an edge on the SoM.
     std::size_t update(std::span<const glm::vec3> previous, std::span<const glm::vec3> positions,
-                       std::span<const glm::vec3> normals);
+                       std::span<const glm::vec3> facingNormals, std::span<const glm::vec3> normals);
+    std::size_t update(std::span<const glm::vec3> previous, std::span<const glm::vec3> positions,
+                       std::span<const glm::vec3> normals) {
+        return update(previous, positions, normals, normals);
+    }
 
     // Appends the strip of every polygon whose updates since its last SoM edge are fewer than
     // `fade`, built at the current pose (the last update's positions and normals): vertex alpha

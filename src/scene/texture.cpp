@@ -55,16 +55,18 @@ Texture Texture::fromLinear(int width, int height, std::vector<glm::vec4> texels
     Texture texture;
     texture.m_wrapU = wrapU;
     texture.m_wrapV = wrapV;
-    texture.m_levels.push_back({width, height, std::move(texels)});
-    texture.buildMipChain();
+    std::vector<Level> levels;
+    levels.push_back({width, height, std::move(texels)});
+    buildMipChain(levels);
+    texture.m_levels = std::make_shared<const std::vector<Level>>(std::move(levels));
     return texture;
 }
 
-void Texture::buildMipChain() {
+void Texture::buildMipChain(std::vector<Level>& levels) {
     // Each level averages the 2x2 (or, for an odd size, up to 3x3-weighted) block under it; a
     // box filter in linear light, so averaging a mip texel equals averaging the texels it covers.
-    while (m_levels.back().width > 1 || m_levels.back().height > 1) {
-        const Level& src = m_levels.back();
+    while (levels.back().width > 1 || levels.back().height > 1) {
+        const Level& src = levels.back();
         Level dst;
         dst.width = std::max(1, src.width / 2);
         dst.height = std::max(1, src.height / 2);
@@ -89,12 +91,12 @@ void Texture::buildMipChain() {
                 dst.texels[std::size_t(y) * dst.width + x] = sum / weightSum;
             }
         }
-        m_levels.push_back(std::move(dst));
+        levels.push_back(std::move(dst));
     }
 }
 
 glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
-    const Level& l = m_levels[std::clamp(level, 0, numLevels() - 1)];
+    const Level& l = (*m_levels)[std::clamp(level, 0, numLevels() - 1)];
     // Far-out coordinates are clamped so the texel index stays an int; wrapping cannot tell
     // them apart at float precision anyway.
     constexpr float kLimit = float(1 << 24);
@@ -155,7 +157,7 @@ float tapWidth(const FootprintEllipse& e, int maxTaps) { return std::max(e.minor
 }  // namespace
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
-    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
     const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(footprint.minLod));
@@ -169,14 +171,14 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
 }
 
 float Texture::finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
-    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
     const float width = tapWidth(e, kMaxAnisotropy);
     return width > 0.0f ? std::log2(width) : 0.0f;
 }
 
 float Texture::lodFromFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {
-    const glm::vec2 size{float(m_levels[0].width), float(m_levels[0].height)};
+    const glm::vec2 size{float(width()), float(height())};
     const float lengthSquared = std::max(glm::dot(duvdx * size, duvdx * size), glm::dot(duvdy * size, duvdy * size));
     if (!(lengthSquared > 0.0f)) return 0.0f;
     return 0.5f * std::log2(lengthSquared);

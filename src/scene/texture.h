@@ -4,6 +4,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -33,13 +34,13 @@ public:
     static Texture fromLinear(int width, int height, std::vector<glm::vec4> texels,
                               WrapMode wrapU = WrapMode::Repeat, WrapMode wrapV = WrapMode::Repeat);
 
-    int width(int level = 0) const { return m_levels[level].width; }
-    int height(int level = 0) const { return m_levels[level].height; }
-    int numLevels() const { return int(m_levels.size()); }
+    int width(int level = 0) const { return (*m_levels)[level].width; }
+    int height(int level = 0) const { return (*m_levels)[level].height; }
+    int numLevels() const { return int(m_levels->size()); }
     WrapMode wrapU() const { return m_wrapU; }
     WrapMode wrapV() const { return m_wrapV; }
     const glm::vec4& texel(int level, int x, int y) const {
-        const Level& l = m_levels[level];
+        const Level& l = (*m_levels)[level];
         return l.texels[std::size_t(y) * l.width + x];
     }
 
@@ -64,9 +65,11 @@ private:
         int height = 0;
         std::vector<glm::vec4> texels;
     };
-    void buildMipChain();
+    static void buildMipChain(std::vector<Level>& levels);
 
-    std::vector<Level> m_levels;  ///< level 0 is full resolution, the last is 1x1
+    // Level 0 is full resolution, the last is 1x1. Immutable once built, so copies of a scene
+    // (blur-shell's shell scene) share the texels.
+    std::shared_ptr<const std::vector<Level>> m_levels;
     WrapMode m_wrapU = WrapMode::Repeat;
     WrapMode m_wrapV = WrapMode::Repeat;
 };

@@ -17,7 +17,7 @@
 namespace streak {
 namespace {
 
-Scene builtin(const std::string& name, OptionMap options = {}) { return test::validBuiltin(name, std::move(options)); }
+Scene builtin(const std::string& name, OptionMap options = OptionMap()) { return test::validBuiltin(name, std::move(options)); }
 
 Scene sphere(int triangles) {
     OptionMap options;
@@ -68,6 +68,35 @@ TEST(BlurShell, SilhouetteEdgesGrowAsTheSquareRootOfTheTriangles) {
         const double ratio = (edges[i] / edges[i - 1]) / std::sqrt(triangles[i] / triangles[i - 1]);
         EXPECT_NEAR(ratio, 1.0, 0.25) << triangles[i] << " triangles: " << edges[i] << " edges, " << edges[i - 1] << " before";
     }
+}
+
+// A flat-shaded sphere, each polygon with its own three vertices and its face normal: its
+// vertices all face one way per polygon, so by the mesh's normals no polygon is on the SoM
+// (the thesis' warning); welded, the vertices at one position share the mean normal of the
+// polygons around it, and the SoM is the smooth sphere's.
+TEST(BlurShell, AFlatShadedMeshHasASilhouetteOfMotionOnlyWhenWelded) {
+    const Scene smooth = sphere(960);
+    Scene flat = smooth;
+    Mesh& mesh = flat.meshes[sphereIndex(flat)];
+    Mesh split = mesh;
+    split.positions.clear(), split.normals.clear(), split.uvs.clear(), split.triangles.clear();
+    const std::size_t n = mesh.numVertices();
+    for (int k = 0; k < mesh.numKeys; ++k)
+        for (const glm::uvec3& tri : mesh.triangles) {
+            const glm::vec3* p = mesh.positions.data() + std::size_t(k) * n;
+            const glm::vec3 face = glm::normalize(glm::cross(p[tri.y] - p[tri.x], p[tri.z] - p[tri.x]));
+            for (int c = 0; c < 3; ++c) split.positions.push_back(p[tri[c]]), split.normals.push_back(face);
+        }
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) split.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+    mesh = split;
+    validateScene(flat);
+    BlurShellOptions byMesh;
+    byMesh.isFacingWelded = false;
+    EXPECT_EQ(buildBlurShell(flat, byMesh).silhouetteEdges, 0u);
+    const std::size_t welded = buildBlurShell(flat, BlurShellOptions{}).silhouetteEdges;
+    const std::size_t reference = buildBlurShell(smooth, byMesh).silhouetteEdges;
+    EXPECT_GT(welded, 20u);
+    EXPECT_NEAR(double(welded), double(reference), 0.25 * double(reference));
 }
 
 TEST(BlurShell, StaticMeshesAndCameraMotionMakeNoShell) {
@@ -177,7 +206,8 @@ TEST(BlurShell, ExportedAndLoadedBackKeepsItsTrianglesAndAlphas) {
 
 TEST(BlurShell, OptionsOutOfRangeAreErrors) {
     for (const auto& [key, value] : {std::pair{"subdivisions", "0"}, std::pair{"length", "0"}, std::pair{"length", "-1"},
-                                     std::pair{"alpha", "1.5"}, std::pair{"fade", "0"}, std::pair{"subdivisions", "129"}}) {
+                                     std::pair{"alpha", "1.5"}, std::pair{"fade", "0"}, std::pair{"subdivisions", "129"},
+                                     std::pair{"facing", "camera"}}) {
         OptionMap options;
         options.set(key, value);
         EXPECT_THROW(BlurShellOptions::read(options), Error) << key << "=" << value;

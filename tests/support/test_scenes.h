@@ -29,7 +29,7 @@ struct PixelCamera {
 };
 
 // A built-in scene with its options, validated as the command line would.
-inline Scene validBuiltin(const std::string& name, OptionMap options = {}) {
+inline Scene validBuiltin(const std::string& name, OptionMap options = OptionMap()) {
     Scene scene = makeBuiltinScene(name, std::move(options));
     validateScene(scene);
     return scene;

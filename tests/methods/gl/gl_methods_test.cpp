@@ -15,7 +15,7 @@
 namespace streak {
 namespace {
 
-Scene builtin(const std::string& name, OptionMap options = {}) { return test::validBuiltin(name, std::move(options)); }
+Scene builtin(const std::string& name, OptionMap options = OptionMap()) { return test::validBuiltin(name, std::move(options)); }
 
 TEST(GlContext, NamesItsRendererAndVersion) {
     const gpu::GlContext& gl = gpu::sharedContext();
