@@ -5,6 +5,7 @@
 #include "methods/analytic/analytic_renderer.h"
 #include "methods/blur_shell/blur_shell_renderer.h"
 #include "methods/blur_shell_gl/blur_shell_gl_renderer.h"
+#include "methods/embree/embree_renderer.h"
 #include "methods/higher_order/higher_order_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
@@ -33,6 +34,8 @@ const std::array kMethods{
                createAccumulationRenderer},
     MethodInfo{"stochastic", "stochastic rasterization: each pixel sample has its own time (samples=8 per pixel)",
                createStochasticRenderer},
+    MethodInfo{"embree", "ray-traced motion blur with Embree 3 (as CPU path tracers do it): S stratified ray times per pixel sample, stochastic's times (samples=8)",
+               createEmbreeRenderer},
     MethodInfo{"motion-path-gl", "motion paths on the GPU (OpenGL 4.5, headless EGL): paths rasterized into per-sample lists, exact spans, compute resolve",
                createMotionPathGlRenderer},
     MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",

@@ -1,6 +1,7 @@
 // Every Khronos sample model in ../shared/scenes, rendered unlit at 320x240 by the reference
 // (accumulation, 256 shutter times) and by motion-path: the two agree at 35 dB PSNR or more.
-// Stochastic rasterization renders each too, closer to the reference than one instant is.
+// Stochastic rasterization renders each too, closer to the reference than one instant is, and
+// embree at stochastic's ray times agrees with it at 40 dB.
 // Each model's shutter is placed where it visibly moves; a render at one instant of the
 // shutter differs from the blurred reference by more than the methods differ from each other,
 // which proves that the motion is there to agree on.
@@ -107,16 +108,22 @@ TEST_P(GltfAgreement, AccumulationAndMotionPathAgree) {
     const Image instant = render("accumulation", scene, 1);
     const Image stochastic = render("stochastic", scene, 8);
     const auto last = Clock::now();
+    const Image traced = render("embree", scene, 8);  // stochastic's ray times
+    const double traceAgreement = psnr(stochastic, traced);
     const double agreement = psnr(reference, motionPath), blur = psnr(reference, instant), noisy = psnr(reference, stochastic);
-    std::printf("[ %s ] PSNR %.2f dB (one instant: %.2f dB, stochastic: %.2f dB); accumulation %.2f s, motion-path %.2f s, "
-                "stochastic %.2f s\n",
-                model.name, agreement, blur, noisy, std::chrono::duration<double>(middle - start).count(),
+    std::printf("[ %s ] PSNR %.2f dB (one instant: %.2f dB, stochastic: %.2f dB, embree against stochastic: %.2f dB); "
+                "accumulation %.2f s, motion-path %.2f s, stochastic %.2f s\n",
+                model.name, agreement, blur, noisy, traceAgreement, std::chrono::duration<double>(middle - start).count(),
                 std::chrono::duration<double>(end - middle).count(), std::chrono::duration<double>(last - end).count());
     EXPECT_GE(agreement, kMinAgreementDb);
     EXPECT_LT(blur, agreement - 3.0) << "the shutter shows too little motion to test agreement";
     // The third CPU method renders the model too; with 8 time samples per pixel it is noisy,
     // but closer to the reference than a single instant.
     EXPECT_GT(noisy, blur);
+    // Embree traces rays at the very times stochastic samples: the same noise, so they agree
+    // far better than either agrees with the reference.
+    EXPECT_GE(traceAgreement, 40.0);
+    EXPECT_GT(psnr(reference, traced), blur);
 }
 
 INSTANTIATE_TEST_SUITE_P(SampleModels, GltfAgreement, ::testing::ValuesIn(kModels),
