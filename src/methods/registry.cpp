@@ -6,6 +6,7 @@
 #include "methods/blur_shell/blur_shell_renderer.h"
 #include "methods/blur_shell_gl/blur_shell_gl_renderer.h"
 #include "methods/embree/embree_renderer.h"
+#include "methods/post_filter/post_filter_renderer.h"
 #include "methods/higher_order/higher_order_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
@@ -36,6 +37,8 @@ const std::array kMethods{
                createStochasticRenderer},
     MethodInfo{"embree", "ray-traced motion blur with Embree 3 (as CPU path tracers do it): S stratified ray times per pixel sample, stochastic's times (samples=8)",
                createEmbreeRenderer},
+    MethodInfo{"post-filter", "the games' post-process blur (McGuire et al. 2012, Guertin et al. 2014): one frame at shutter centre with velocities, TileMax, NeighborMax, gather",
+               createPostFilterRenderer},
     MethodInfo{"motion-path-gl", "motion paths on the GPU (OpenGL 4.5, headless EGL): paths rasterized into per-sample lists, exact spans, compute resolve",
                createMotionPathGlRenderer},
     MethodInfo{"accumulation-gl", "accumulation on the GPU (OpenGL 4.5, headless EGL): S depth-tested passes (samples=256)",

@@ -198,6 +198,10 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"shell option it does not take", "shell builtin:sphere --option blend=sorted -o " + dir.file("shell.glb")},
         {"shell of no subdivisions", "shell builtin:sphere --option subdivisions=0 -o " + dir.file("shell.glb")},
         {"shell into a missing folder", "shell builtin:sphere -o " + dir.file("no/such/shell.glb")},
+        {"embree of no samples", "render builtin:crossing -m embree --samples 0 -o " + out},
+        {"embree option it does not take", "render builtin:crossing -m embree --option mask-bits=32 -o " + out},
+        {"post-filter radius past its tiles", "render builtin:crossing -m post-filter --option tile=8 --option max-radius=16 -o " + out},
+        {"post-filter of no taps", "render builtin:crossing -m post-filter --option samples=0 -o " + out},
         {"compare missing file", "compare " + dir.file("a.png") + " " + dir.file("b.png")},
         {"no subcommand", ""},
     };
