@@ -97,8 +97,10 @@ void InstantPasses::draw(float t, std::size_t firstInOrderTriangle) {
         setTime(m_blend, t);
         glDrawArrays(GL_TRIANGLES, GLint(numListed * 3), GLsizei((numTriangles - numListed) * 3));
         glDisable(GL_BLEND);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     }
+    // Left as found: later passes of the caller write colour and depth.
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
 }
 
 }  // namespace streak::gpu

@@ -7,6 +7,7 @@
 #include "methods/blur_shell_gl/blur_shell_gl_renderer.h"
 #include "methods/embree/embree_renderer.h"
 #include "methods/post_filter/post_filter_renderer.h"
+#include "methods/post_filter_gl/post_filter_gl_renderer.h"
 #include "methods/higher_order/higher_order_renderer.h"
 #include "methods/motion_path/motion_path_renderer.h"
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
@@ -47,6 +48,8 @@ const std::array kMethods{
                createStochasticGlRenderer},
     MethodInfo{"blur-shell-gl", "blur shell on the GPU (OpenGL 4.5): the shell built on the CPU, drawn over the mesh by the blender in submission order",
                createBlurShellGlRenderer},
+    MethodInfo{"post-filter-gl", "the games' post-process blur on the GPU (OpenGL 4.5): centre frame and velocities, then TileMax, NeighborMax and gather as compute passes",
+               createPostFilterGlRenderer},
 };
 
 }  // namespace

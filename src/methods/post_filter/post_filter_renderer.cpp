@@ -1,8 +1,7 @@
 #include "methods/post_filter/post_filter_renderer.h"
 
 #include "exposure/instant_frame.h"
-#include "methods/post_filter/reconstruction_filter.h"
-#include "util/error.h"
+#include "exposure/reconstruction_filter.h"
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -18,20 +17,20 @@ constexpr int kTileSize = 32;
 
 class PostFilterRenderer final : public Renderer {
 public:
-    explicit PostFilterRenderer(const ReconstructionOptions& options) : m_options(options) {}
+    explicit PostFilterRenderer(const exposure::ReconstructionOptions& options) : m_options(options) {}
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const int width = settings.width, height = settings.height;
-        VelocityFrame frame;
+        exposure::VelocityFrame frame;
         {
             PhaseTimer timer(context.stats, "centre frame");
             frame = centreFrame(scene, settings);
         }
-        ReconstructionOptions options = m_options;
+        exposure::ReconstructionOptions options = m_options;
         options.seed = settings.seed;
-        clampVelocities(frame, options);
+        exposure::clampVelocities(frame, options);
         PhaseTimer timer(context.stats, "filter");
-        Image image = reconstruct(frame, options);
+        Image image = exposure::reconstruct(frame, options);
         double moving = 0.0;
         for (const glm::vec2& v : frame.velocity) moving += glm::length(v) > 0.0f ? 1.0 : 0.0;
         context.stats.setCounter("moving_pixels", moving);
@@ -42,7 +41,7 @@ public:
 private:
     // The scene at shutter centre: colour box-filtered over the --aa samples; depth and velocity
     // of the pixel's nearest opaque sample.
-    static VelocityFrame centreFrame(const Scene& scene, const RenderSettings& settings) {
+    static exposure::VelocityFrame centreFrame(const Scene& scene, const RenderSettings& settings) {
         const FlatGeometry geometry(scene);
         const raster::Viewport viewport{settings.width, settings.height};
         const raster::SamplePattern pattern = raster::samplePatternFor(settings.aa, settings.isGridPattern);
@@ -57,7 +56,7 @@ private:
             if (!(c.w > 1e-6f)) return glm::vec2(std::numeric_limits<float>::quiet_NaN());  // behind the eye: no velocity
             return glm::vec2((c.x / c.w * 0.5f + 0.5f) * float(settings.width), (0.5f - 0.5f * c.y / c.w) * float(settings.height));
         };
-        VelocityFrame frame;
+        exposure::VelocityFrame frame;
         frame.width = settings.width, frame.height = settings.height;
         const std::size_t numPixels = std::size_t(settings.width) * std::size_t(settings.height);
         frame.color.assign(numPixels, glm::vec3(0.0f));
@@ -98,19 +97,13 @@ private:
         return frame;
     }
 
-    ReconstructionOptions m_options;
+    exposure::ReconstructionOptions m_options;
 };
 
 }  // namespace
 
 std::unique_ptr<Renderer> createPostFilterRenderer(OptionMap& options) {
-    ReconstructionOptions o;
-    o.tile = options.getInt("tile", o.tile, 1, 256);
-    o.samples = options.getInt("samples", o.samples, 1, 255);
-    o.maxRadius = float(options.getDouble("max-radius", double(o.tile), 0.0, 256.0));
-    if (o.maxRadius > float(o.tile)) throw Error(options.owner() + ": max-radius must not exceed tile (the tiles see velocities up to k pixels)");
-    o.softDepth = float(options.getDouble("soft-depth", o.softDepth, 1e-6, 1.0));
-    return std::make_unique<PostFilterRenderer>(o);
+    return std::make_unique<PostFilterRenderer>(exposure::ReconstructionOptions::read(options));
 }
 
 }  // namespace streak

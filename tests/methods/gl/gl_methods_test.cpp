@@ -170,5 +170,25 @@ TEST(BlurShellGl, OrderedAndSortedBlendingDiffer) {
     EXPECT_LT(psnr(ordered, sorted), 55.0);  // and more than 58 dB from the CPU's twin
 }
 
+// post-filter-gl runs the CPU filter's passes as compute shaders, with the CPU's jitter: the
+// same image on the grid, from the centre frame to the gather.
+class PostFilterGlAgreement : public testing::TestWithParam<std::pair<std::string, int>> {};
+
+TEST_P(PostFilterGlAgreement, MatchesCpuPostFilter) {
+    const auto& [name, aa] = GetParam();
+    const Scene scene = builtin(name);
+    RenderStats stats;
+    const Image gl = test::render("post-filter-gl", scene, 96, 72, {}, &stats, ShadingMode::Phong, aa);
+    const Image cpu = test::render("post-filter", scene, 96, 72, {}, nullptr, ShadingMode::Phong, aa, true);
+    EXPECT_GE(psnr(gl, cpu), 45.0);
+    const Image instant = test::render("accumulation", scene, 96, 72, test::withOption("samples", "1"), nullptr, ShadingMode::Phong, aa, true);
+    EXPECT_LT(psnr(cpu, instant), 40.0) << "the filter should blur this scene";
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PostFilterGlAgreement,
+                         testing::Values(std::pair{std::string("rotating-cube"), 1}, std::pair{std::string("fence"), 1},
+                                         std::pair{std::string("pan"), 1}, std::pair{std::string("translucent"), 1},
+                                         std::pair{std::string("spin"), 2}));
+
 }  // namespace
 }  // namespace streak

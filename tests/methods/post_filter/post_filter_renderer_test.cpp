@@ -1,7 +1,7 @@
 #include "methods/post_filter/post_filter_renderer.h"
 
 #include "image/metrics.h"
-#include "methods/post_filter/reconstruction_filter.h"
+#include "exposure/reconstruction_filter.h"
 #include "support/render.h"
 #include "support/test_scenes.h"
 #include "util/error.h"
@@ -13,6 +13,12 @@
 
 namespace streak {
 namespace {
+
+using exposure::ReconstructionOptions;
+using exposure::VelocityFrame;
+using exposure::clampVelocities;
+using exposure::neighborMax;
+using exposure::tileMax;
 
 // Without motion every velocity is zero: NeighborMax is below half a pixel everywhere and the
 // filter returns the centre frame, the pinhole image.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "image/image.h"
+#include "util/options.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -8,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace streak {
+namespace streak::exposure {
 
-// What the games' motion-blur filter reads: one render at shutter centre with, per pixel, its
+// The games' motion-blur filter, shared by post-filter and post-filter-gl. What it reads: one render at shutter centre with, per pixel, its
 // colour, view depth and screen-space velocity (pixels; half the displacement over the
 // shutter, McGuire et al.'s V, so a point sweeps X - V to X + V).
 struct VelocityFrame {
@@ -36,7 +37,14 @@ struct ReconstructionOptions {
     float maxRadius = 20.0f;   ///< velocities are clamped to this many pixels (<= tile)
     float softDepth = 0.01f;   ///< soft depth comparison extent, as a share of the depth
     std::uint64_t seed = 0;    ///< of the per-pixel jitter
+
+    // The post-filter methods' options: tile, samples, max-radius (default: tile), soft-depth.
+    static ReconstructionOptions read(OptionMap& options);
 };
+
+// The per-pixel offset of the gather taps along the line, in [-1/2, 1/2) tap spacings: one
+// definition, so the CPU and GL filters agree.
+float gatherJitter(std::uint64_t seed, std::size_t pixel);
 
 // Velocities clamped to maxRadius and zeroed below half a pixel, as the filter uses them.
 void clampVelocities(VelocityFrame& frame, const ReconstructionOptions& options);
@@ -48,4 +56,4 @@ std::vector<glm::vec2> neighborMax(const std::vector<glm::vec2>& tiles, int tile
 // The filtered image.
 Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& options);
 
-}  // namespace streak
+}  // namespace streak::exposure

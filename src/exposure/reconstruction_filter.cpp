@@ -1,4 +1,6 @@
-#include "methods/post_filter/reconstruction_filter.h"
+#include "exposure/reconstruction_filter.h"
+
+#include "util/error.h"
 
 #include "util/random.h"
 
@@ -9,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace streak {
+namespace streak::exposure {
 
 namespace {
 
@@ -31,6 +33,18 @@ float softDepthCompare(float a, float b, float extent) { return std::clamp(1.0f 
 glm::vec2 longer(glm::vec2 a, glm::vec2 b) { return glm::dot(b, b) > glm::dot(a, a) ? b : a; }
 
 }  // namespace
+
+ReconstructionOptions ReconstructionOptions::read(OptionMap& options) {
+    ReconstructionOptions o;
+    o.tile = options.getInt("tile", o.tile, 1, 256);
+    o.samples = options.getInt("samples", o.samples, 1, 255);
+    o.maxRadius = float(options.getDouble("max-radius", double(o.tile), 0.0, 256.0));
+    if (o.maxRadius > float(o.tile)) throw Error(options.owner() + ": max-radius must not exceed tile (the tiles see velocities up to k pixels)");
+    o.softDepth = float(options.getDouble("soft-depth", o.softDepth, 1e-6, 1.0));
+    return o;
+}
+
+float gatherJitter(std::uint64_t seed, std::size_t pixel) { return unitFloat(hashValues(seed, std::uint64_t(pixel))) - 0.5f; }
 
 void clampVelocities(VelocityFrame& frame, const ReconstructionOptions& options) {
     for (glm::vec2& v : frame.velocity) {
@@ -86,7 +100,7 @@ Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& optio
                 glm::vec3 sum = frame.color[cx] * weight;
                 // Guertin et al.: a per-pixel jitter of the taps along the line, so the steps
                 // between taps become noise instead of ghost copies.
-                const float jitter = unitFloat(hashValues(options.seed, std::uint64_t(cx))) - 0.5f;
+                const float jitter = gatherJitter(options.seed, cx);
                 for (int i = 0; i < taps; ++i) {
                     if (i == (taps - 1) / 2) continue;  // the centre is the pixel itself
                     const float t = -1.0f + 2.0f * (float(i) + jitter + 1.0f) / float(taps + 1);
@@ -108,4 +122,4 @@ Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& optio
     return image;
 }
 
-}  // namespace streak
+}  // namespace streak::exposure
