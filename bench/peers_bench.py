@@ -8,7 +8,7 @@ render's time ("render" phase of --stats, least of --repeats) and PSNR give one 
 time-quality curve. Prints a table per scene (all points), and the summary: per method, the
 least time that reaches 40 dB and 50 dB, and its ratio to the fastest peer (accumulation,
 stochastic, embree, post-filter) at that quality. With --plot DIR, one Pareto plot per scene
-(DIR/pareto_<scene>.png, log time on x).
+(DIR/pareto_<scene>_<size>.png, log time on x).
 
 Section failures: post-filter's known failure modes beside accumulation 3000 and analytic, as an
 image sheet (DIR/post_filter_failures.png): thin bars over a wall moving differently (fence),
@@ -107,7 +107,7 @@ def report(name, rows, plot_dir, size):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
         fig.tight_layout()
-        fig.savefig(os.path.join(plot_dir, f"pareto_{re.sub(r'[^A-Za-z0-9]+', '_', name)}.png"), dpi=100)
+        fig.savefig(os.path.join(plot_dir, f"pareto_{re.sub(r'[^A-Za-z0-9]+', '_', name)}_{size}.png"), dpi=100)
         plt.close(fig)
 
 
