@@ -40,8 +40,8 @@ def row(streak, name, spec, flags):
     size = "1024x768"
     mesh_cpu, _ = streak.render(spec, "accumulation", out, size=size, args=[*flags, "--samples", "1"])
     shell_cpu, stats = streak.render(spec, "blur-shell", out, size=size, args=flags)
-    mesh_gl, mesh_gl_stats = streak.render(spec, "accumulation-gl", out, size=size, args=[*flags, "--samples", "1", "--frames", "2"])
-    shell_gl, gl_stats = streak.render(spec, "blur-shell-gl", out, size=size, args=[*flags, "--frames", "2"])
+    mesh_gl, mesh_gl_stats = streak.render(spec, "accumulation-gl", out, size=size, args=[*flags, "--samples", "1", "--repeat", "2"])
+    shell_gl, gl_stats = streak.render(spec, "blur-shell-gl", out, size=size, args=[*flags, "--repeat", "2"])
     c, t = stats["counters"], stats["time_ms"]
     n = c["triangles"]  # the scene's, before the shell
     som_per_update = t["silhouette"] / SUBDIVISIONS

@@ -9,7 +9,7 @@ Sections (all by default, or pick with --sections):
           shutter times, and the sample counts at which accumulation-gl and stochastic-gl reach
           the same PSNR, with the three warm frame times and the ratios.
 
-Every timed render is the second of two frames in one process (--frames 2), so shaders are
+Every timed render is the second of two renders in one process (--repeat 2), so shaders are
 compiled and the driver's code generated before the timed frame. Pass times are the "gpu <pass>"
 phases of --stats: GL timestamp queries on a GPU; on a software rasterizer (llvmpipe) the CPU
 clock around glFinish, since llvmpipe stamps queries as it bins them. The GL_RENDERER of the run
@@ -32,7 +32,7 @@ GL_METHODS = ["motion-path-gl", "accumulation-gl", "stochastic-gl"]
 # The baselines' sample counts in the pass table: the default of stochastic-gl, and 64 shutter
 # times for accumulation-gl (the equal section finds the counts that match motion-path-gl).
 TABLE_SAMPLES = {"motion-path-gl": [], "accumulation-gl": ["--samples", "64"], "stochastic-gl": ["--samples", "8"]}
-WARM = ["--frames", "2"]
+WARM = ["--repeat", "2"]
 
 
 def gl_renderer(streak):

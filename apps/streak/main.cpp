@@ -9,6 +9,7 @@
 #include "scene/camera.h"
 #include "scene/gltf_writer.h"
 #include "scene/scene_loader.h"
+#include "scene/shutter.h"
 #include "util/error.h"
 
 #include <CLI/CLI.hpp>
@@ -130,8 +131,13 @@ struct RenderArgs {
     std::optional<std::string> background;
     std::uint64_t seed = 0;
     int threads = 0;
-    int frames = 1;
+    int repeat = 1;
+    std::optional<std::string> sequence;  ///< --frames A:B[:STEP]
     std::string stats;
+    // Every scene: the shutter's curve and rolling window; glTF: where it sits around the frame.
+    std::optional<std::string> shutterCurve;
+    std::optional<double> rollingShutter;
+    std::optional<std::string> shutterPosition;
     // glTF scenes only: the shutter in animation frames, the animation, its sampling, the camera.
     std::optional<double> frame;
     std::optional<double> shutter;
@@ -258,14 +264,93 @@ std::string lowercaseExtension(const std::string& path) {
     return extension;
 }
 
+// The frames a render makes: --frames A:B[:STEP] (a sequence), else the one frame of --frame.
+struct FrameList {
+    std::vector<double> frames;
+    bool isSequence = false;
+};
+
+FrameList frameList(const RenderArgs& args, const GltfOptions& gltf) {
+    FrameList list;
+    if (!args.sequence) {
+        list.frames.push_back(gltf.frame);
+        return list;
+    }
+    if (!isGltfSpec(args.scene)) throw Error("--frames A:B applies to glTF scenes (.gltf, .glb) only: a built-in scene has no clock");
+    if (args.frame) throw Error("--frame and --frames A:B cannot both be given");
+    long first = 0, last = 0, step = 1;
+    char extra = 0;
+    const int n = std::sscanf(args.sequence->c_str(), "%ld:%ld:%ld%c", &first, &last, &step, &extra);
+    const bool hasStep = args.sequence->find(':') != args.sequence->rfind(':');
+    if ((n != 2 && n != 3) || (n == 2 && hasStep) || step < 1 || last < first || (last - first) / step >= 100000)
+        throw Error("--frames must be A:B or A:B:STEP, whole frames with A <= B and STEP >= 1 (at most 100000 frames; --repeat N renders one frame N times), got '" + *args.sequence + "'");
+    for (long f = first; f <= last; f += step) list.frames.push_back(double(f));
+    list.isSequence = true;
+    return list;
+}
+
+// `pattern` with its one %d (or %0Nd) replaced by the frame number; a pattern without one is
+// the path itself, allowed only for a single frame.
+std::string framePath(const std::string& pattern, double frame, bool isSequence, const std::string& flag) {
+    std::string out;
+    int conversions = 0;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') {
+            out += pattern[i];
+            continue;
+        }
+        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+            out += '%', ++i;
+            continue;
+        }
+        std::size_t j = i + 1;
+        while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
+        const std::string width = pattern.substr(i + 1, j - i - 1);
+        if (j >= pattern.size() || pattern[j] != 'd' || width.size() > 2 || (!width.empty() && width[0] != '0'))
+            throw Error(flag + " '" + pattern + "': the only conversion a frame pattern takes is %d or %0Nd (write %% for a %)");
+        char number[32];
+        std::snprintf(number, sizeof number, ("%" + width + "ld").c_str(), long(std::lround(frame)));
+        out += number;
+        ++conversions;
+        i = j;
+    }
+    if (conversions > 1) throw Error(flag + " '" + pattern + "' has more than one %d");
+    if (conversions == 0 && isSequence) throw Error(flag + " '" + pattern + "' needs a %d (e.g. out_%04d.png) to name each frame of --frames");
+    return out;
+}
+
+// The shutter flags that shape the exposure (curve, rolling), honoured by every method.
+Shutter shutterOf(const RenderArgs& args) {
+    Shutter shutter;
+    if (args.shutterCurve) shutter.curve = ShutterCurve::parse(*args.shutterCurve);
+    if (args.rollingShutter) shutter.rollingDuration = checkRollingDuration(*args.rollingShutter);
+    return shutter;
+}
+
+void reportShutter(const Shutter& shutter, ShutterPosition position, RenderStats& stats) {
+    stats.setInfo("shutter_curve", shutter.curve.name());
+    stats.setInfo("shutter_position", shutterPositionName(position));
+    stats.setCounter("rolling_shutter", shutter.rollingDuration);
+}
+
+// Maps one frame's progress into the sequence's single bar.
+class FrameProgress final : public ProgressReporter {
+public:
+    FrameProgress(ProgressReporter& whole, double offset, double scale) : m_whole(whole), m_offset(offset), m_scale(scale) {}
+    void update(double fraction) override { m_whole.update(m_offset + m_scale * fraction); }
+
+private:
+    ProgressReporter& m_whole;
+    double m_offset, m_scale;
+};
+
 int runRender(const RenderArgs& args) {
     using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
     if (args.width <= 0 || args.height <= 0 || args.width > raster::kMaxImageSize || args.height > raster::kMaxImageSize)
         throw Error("--width and --height must be in [1, " + std::to_string(raster::kMaxImageSize) + "], got " +
                     std::to_string(args.width) + "x" + std::to_string(args.height));
     if (args.aa < 1 || args.aa > 16) throw Error("--aa must be in [1, 16], got " + std::to_string(args.aa));
-    if (args.frames < 1) throw Error("--frames must be 1 or more, got " + std::to_string(args.frames));
+    if (args.repeat < 1) throw Error("--repeat must be 1 or more, got " + std::to_string(args.repeat));
     if (args.threads < 0) throw Error("--threads must be 0 (all cores) or more, got " + std::to_string(args.threads));
     if (args.samples && *args.samples <= 0) throw Error("--samples must be positive, got " + std::to_string(*args.samples));
     RenderSettings settings;
@@ -288,55 +373,100 @@ int runRender(const RenderArgs& args) {
         if (value->has_value()) methodOptions.set(key, std::to_string(**value));
     addOptionFlags(args.options, methodOptions);
     std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
-    GltfOptions gltf = gltfOptions(args);
-    RenderStats stats;
-    if (const std::optional<AnimationTrail> trail = renderer->animationTrail()) applyTrail(args, *trail, "method " + args.method, gltf, stats);
-    checkWritable(args.output, true);
-    if (!args.stats.empty()) checkWritable(args.stats, false);
+    const GltfOptions gltf = gltfOptions(args);
+    const Shutter shutter = shutterOf(args);
+    const ShutterPosition position = parseShutterPosition(args.shutterPosition.value_or("start"));
+    if (args.shutterPosition && !isGltfSpec(args.scene)) throw Error("--shutter-position applies to glTF scenes (.gltf, .glb) only");
+    const std::optional<AnimationTrail> trail = renderer->animationTrail();
+    if (trail && (args.shutterPosition || args.shutterCurve || args.rollingShutter))
+        throw Error("the shutter flags do not apply to method " + args.method + ": it draws a trail, not a shutter average");
+    const FrameList list = frameList(args, gltf);
+    std::vector<std::string> outputs, statsPaths;
+    const bool isStatsPerFrame = args.stats.find('%') != std::string::npos;
+    for (const double frame : list.frames) {
+        outputs.push_back(framePath(args.output, frame, list.isSequence, "-o"));
+        checkWritable(outputs.back(), true);
+        if (isStatsPerFrame) {
+            statsPaths.push_back(framePath(args.stats, frame, list.isSequence, "--stats"));
+            checkWritable(statsPaths.back(), false);
+        }
+    }
+    if (!args.stats.empty() && !isStatsPerFrame) checkWritable(args.stats, false);
 
     std::optional<tbb::global_control> threadLimit;
     if (args.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
 
-    Scene scene;
-    SceneCleanup cleanup;
-    {
-        PhaseTimer timer(stats, "load");
-        scene = loadScene(args.scene, gltf, &stats);
-        if (args.background) scene.background = parseColor(*args.background);
-        cleanup = validateScene(scene);
-    }
-    stats.setInfo("scene", args.scene);
-    stats.setInfo("method", args.method);
-    stats.setInfo("shading", args.shading);
-    stats.setCounter("width", args.width);
-    stats.setCounter("height", args.height);
-    stats.setCounter("aa", args.aa);
-    stats.setCounter("sample_grid", args.sampleGrid ? 1 : 0);
-    stats.setCounter("triangles", double(scene.numTriangles()));
-    stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
-    stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
-    stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
-    reportCamera(scene.camera, stats);
+    TerminalProgress progress;
+    std::vector<std::string> frameJson;
+    for (std::size_t f = 0; f < list.frames.size(); ++f) {
+        const auto start = Clock::now();
+        RenderStats stats;
+        GltfOptions frameGltf = gltf;
+        frameGltf.frame = list.frames[f];
+        if (trail) applyTrail(args, *trail, "method " + args.method, frameGltf, stats);
+        else frameGltf.frame = shutterOpenFrame(position, frameGltf.frame, frameGltf.shutter);
 
-    // Frames before the last warm up what a renderer keeps between frames (GL programs and the
-    // driver's compiled code, caches); the image and stats are the last frame's.
-    stats.setCounter("frames", args.frames);
-    Image image;
-    for (int frame = 0; frame < args.frames; ++frame) {
-        const bool isLast = frame + 1 == args.frames;
-        RenderStats warmUp;
-        TerminalProgress progress;
-        RenderContext context{isLast ? stats : warmUp, &progress};
-        PhaseTimer timer(context.stats, "render");
-        image = renderer->render(scene, settings, context);
+        Scene scene;
+        SceneCleanup cleanup;
+        {
+            PhaseTimer timer(stats, "load");
+            scene = loadScene(args.scene, frameGltf, &stats);
+            if (args.background) scene.background = parseColor(*args.background);
+            scene.shutter = shutter;
+            cleanup = validateScene(scene);
+        }
+        stats.setInfo("scene", args.scene);
+        stats.setInfo("method", args.method);
+        stats.setInfo("shading", args.shading);
+        if (list.isSequence) stats.setCounter("frame", list.frames[f]);
+        stats.setCounter("width", args.width);
+        stats.setCounter("height", args.height);
+        stats.setCounter("aa", args.aa);
+        stats.setCounter("sample_grid", args.sampleGrid ? 1 : 0);
+        stats.setCounter("triangles", double(scene.numTriangles()));
+        stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
+        stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
+        stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
+        reportShutter(scene.shutter, position, stats);
+        reportCamera(scene.camera, stats);
+
+        // Renders before the last warm up what a renderer keeps between renders (GL programs and
+        // the driver's compiled code, caches); the image and stats are the last's.
+        stats.setCounter("repeat", args.repeat);
+        Image image;
+        for (int r = 0; r < args.repeat; ++r) {
+            const bool isLast = r + 1 == args.repeat;
+            RenderStats warmUp;
+            const double share = 1.0 / (double(list.frames.size()) * args.repeat);
+            FrameProgress frameProgress(progress, (double(f) * args.repeat + r) * share, share);
+            RenderContext context{isLast ? stats : warmUp, &frameProgress};
+            PhaseTimer timer(context.stats, "render");
+            image = renderer->render(scene, settings, context);
+        }
+        writeImage(image, outputs[f]);
+        stats.addTime("total", std::chrono::duration<double>(Clock::now() - start).count());
+        if (isStatsPerFrame) {
+            try {
+                writeTextFile(statsPaths[f], stats.toJson());
+            } catch (const Error&) {
+                std::filesystem::remove(outputs[f]);  // all or nothing, per frame
+                throw;
+            }
+        } else if (!args.stats.empty()) {
+            frameJson.push_back(stats.toJson());
+        }
     }
-    writeImage(image, args.output);
-    stats.addTime("total", std::chrono::duration<double>(Clock::now() - start).count());
-    if (!args.stats.empty()) {
+    if (!args.stats.empty() && !isStatsPerFrame) {
+        std::string text = frameJson.front();
+        if (list.isSequence) {
+            text = "{\"frames\": [\n";
+            for (std::size_t f = 0; f < frameJson.size(); ++f) text += (f ? ",\n" : "") + frameJson[f];
+            text += "\n]}\n";
+        }
         try {
-            writeTextFile(args.stats, stats.toJson());
+            writeTextFile(args.stats, text);
         } catch (const Error&) {
-            std::filesystem::remove(args.output);  // all or nothing
+            if (!list.isSequence) std::filesystem::remove(outputs.front());  // all or nothing
             throw;
         }
     }
@@ -478,9 +608,18 @@ int run(int argc, char** argv) {
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
     render->add_option("--threads", renderArgs.threads, "worker threads (0: all cores)")->capture_default_str();
-    render->add_option("--frames", renderArgs.frames, "render the frame this many times; times and counters are the last's (warm: GL programs built)")
+    render->add_option("--repeat", renderArgs.repeat, "render each frame this many times; times and counters are the last's (warm: GL programs built)")
         ->capture_default_str();
-    render->add_option("--stats", renderArgs.stats, "write figures of the render (times, counters) as JSON to this file");
+    render->add_option("--frames", renderArgs.sequence,
+                       "glTF: render the frames A:B[:STEP] (frame F gets the shutter at F), each to -o with its %d (e.g. out_%04d.png)");
+    render->add_option("--stats", renderArgs.stats,
+                       "write figures of the render (times, counters) as JSON to this file (a sequence: one file per frame with %d, else one {\"frames\": [...]})");
+    render->add_option("--shutter-curve", renderArgs.shutterCurve,
+                       "the shutter's opening over its open time (Blender: Shutter Curve): box, triangle, trapezoid:A (ramps of A at both ends) or T0:W0,T1:W1,... (piecewise linear, T from 0 to 1) (box)");
+    render->add_option("--rolling-shutter", renderArgs.rollingShutter,
+                       "rolling shutter (Blender: Rolling Shutter Duration): each row is open for this share D in (0, 1] of the shutter, rows starting top first over the other 1 - D (1: global)");
+    render->add_option("--shutter-position", renderArgs.shutterPosition,
+                       "glTF: where the shutter sits around --frame F (Blender: Shutter Position): start [F, F+S], center [F-S/2, F+S/2] or end [F-S, F] (start)");
     addGltfFlags(render, renderArgs);
 
     std::string compareA, compareB, heatmap;

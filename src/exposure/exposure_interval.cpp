@@ -83,21 +83,22 @@ int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, cons
     return merges;
 }
 
-float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ExactDepth* exactDepth,
-                    double* misorderedTime, double* overlapTime) {
+float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window,
+                    const ExactDepth* exactDepth, double* misorderedTime, double* overlapTime) {
     std::fill(weights.begin(), weights.end(), 0.0f);
     float background = 0.0f;
     std::vector<std::size_t> covering;
     forEachPiece(intervals, covering, [&](float a, float b) {
+        const float share = window.measure(a, b);
         if (covering.empty()) {
-            background += b - a;
+            background += share;
             return;
         }
         const float tm = 0.5f * (a + b);
         std::size_t nearest = covering[0];
         for (std::size_t i : covering)
             if (intervals[i].depthAt(tm) < intervals[nearest].depthAt(tm)) nearest = i;
-        weights[nearest] += b - a;
+        weights[nearest] += share;
         if (exactDepth && misorderedTime && covering.size() > 1) {
             if (overlapTime) *overlapTime += b - a;
             std::size_t trueNearest = covering[0];
@@ -112,21 +113,21 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
     return background;
 }
 
-float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights) {
+float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window) {
     std::fill(weights.begin(), weights.end(), 0.0f);
     float background = 0.0f;
     std::vector<std::size_t> covering;
     forEachPiece(intervals, covering, [&](float a, float b) {
-        const float tm = 0.5f * (a + b);
+        const float tm = 0.5f * (a + b), share = window.measure(a, b);
         std::sort(covering.begin(), covering.end(),
                   [&](std::size_t i, std::size_t j) { return intervals[i].depthAt(tm) < intervals[j].depthAt(tm); });
         float transmittance = 1.0f;
         for (std::size_t i : covering) {
-            weights[i] += (b - a) * transmittance * intervals[i].alpha;
+            weights[i] += share * transmittance * intervals[i].alpha;
             transmittance *= 1.0f - intervals[i].alpha;
             if (transmittance <= 0.0f) break;
         }
-        background += (b - a) * transmittance;
+        background += share * transmittance;
     });
     return background;
 }

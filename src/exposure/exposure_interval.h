@@ -1,5 +1,7 @@
 #pragma once
 
+#include "scene/shutter.h"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -56,9 +58,12 @@ int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, cons
 // also adds to *misorderedTime the covered time in which the linear depths pick a different
 // nearest interval than the true depths would (the cost of the paper's linearisation), and to
 // *overlapTime, when given, the time two or more intervals cover (where order matters at all).
+//
+// Shares are measured by the sample row's exposure (window.measure): a piece's time under a box
+// shutter, its integral of the curve otherwise, 0 outside a rolling row's window.
 using ExactDepth = std::function<double(std::size_t, float)>;
-float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ExactDepth* exactDepth = nullptr,
-                    double* misorderedTime = nullptr, double* overlapTime = nullptr);
-float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights);
+float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window = {},
+                    const ExactDepth* exactDepth = nullptr, double* misorderedTime = nullptr, double* overlapTime = nullptr);
+float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window = {});
 
 }  // namespace streak::exposure

@@ -48,6 +48,7 @@ float gatherJitter(std::uint64_t seed, std::size_t pixel) { return unitFloat(has
 
 void clampVelocities(VelocityFrame& frame, const ReconstructionOptions& options) {
     for (glm::vec2& v : frame.velocity) {
+        v *= options.velocityScale;
         const float speed = glm::length(v);
         if (!(speed >= 0.5f)) v = glm::vec2(0.0f);
         else if (speed > options.maxRadius) v *= options.maxRadius / speed;

@@ -37,6 +37,7 @@ struct ReconstructionOptions {
     float maxRadius = 20.0f;   ///< velocities are clamped to this many pixels (<= tile)
     float softDepth = 0.01f;   ///< soft depth comparison extent, as a share of the depth
     std::uint64_t seed = 0;    ///< of the per-pixel jitter
+    float velocityScale = 1.0f;  ///< the shutter's share each row sees: a rolling shutter's D (not an option)
 
     // The post-filter methods' options: tile, samples, max-radius (default: tile), soft-depth.
     static ReconstructionOptions read(OptionMap& options);
@@ -46,7 +47,8 @@ struct ReconstructionOptions {
 // definition, so the CPU and GL filters agree.
 float gatherJitter(std::uint64_t seed, std::size_t pixel);
 
-// Velocities clamped to maxRadius and zeroed below half a pixel, as the filter uses them.
+// Velocities scaled by velocityScale, clamped to maxRadius and zeroed below half a pixel, as
+// the filter uses them.
 void clampVelocities(VelocityFrame& frame, const ReconstructionOptions& options);
 
 // TileMax and NeighborMax: per tile, the velocity of largest magnitude.

@@ -43,10 +43,10 @@ struct SampleResolveScratch {
 // exactly over time, then shade each visible piece once (abutting whole pieces of a triangle
 // merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
 // and shade(triangle, t0, t1) -> ShadedColor; exactDepth, when given, measures the linear
-// depths' misordering (resolveOpaque).
+// depths' misordering (resolveOpaque). Shares are of the sample row's exposure, `window`.
 template <class TriangleOf, class IsTranslucent, class Shade>
 glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const OracleWeights& oracle, const ExactDepth* exactDepth,
-                        const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
+                        const ShutterWindow& window, const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
                         SampleResolveScratch& scratch, SampleResolveCounters& counters) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -68,9 +68,10 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     scratch.weights.resize(list.size());
     const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
     float backgroundWeight = 0.0f;
-    if (hasTranslucency) backgroundWeight = resolveTranslucent(list, scratch.weights);
-    else if (exactDepth) backgroundWeight = resolveOpaque(list, scratch.weights, exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
-    else backgroundWeight = resolveOpaque(list, scratch.weights);
+    if (hasTranslucency) backgroundWeight = resolveTranslucent(list, scratch.weights, window);
+    else if (exactDepth)
+        backgroundWeight = resolveOpaque(list, scratch.weights, window, exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
+    else backgroundWeight = resolveOpaque(list, scratch.weights, window);
     const auto resolved = Clock::now();
     counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
 
@@ -82,7 +83,7 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
             sum += list[k].color * scratch.weights[k];
             continue;
         }
-        const bool isWhole = scratch.weights[k] >= list[k].duration() * (1.0f - 1e-5f);
+        const bool isWhole = scratch.weights[k] >= window.measure(list[k].t0, list[k].t1) * (1.0f - 1e-5f);
         scratch.pieces.push_back({triangleOf(list[k].source), list[k].t0, list[k].t1, scratch.weights[k], isWhole});
     }
     mergeAbuttingPieces(scratch.pieces);

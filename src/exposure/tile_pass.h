@@ -37,7 +37,7 @@ std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raste
 
 // The second half of such a tile: every sample's intervals (records grouped by sample: runs[i]
 // to runs[i + 1] of bySample, each with an `interval`) become its colour by
-// resolve(ndc, intervals), the background where it has none, and the tile's pixels the mean of
+// resolve(ndc, pixel row, intervals), the background where it has none, and the tile's pixels the mean of
 // their samples.
 template <class Record, class Resolve>
 void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, int width, int height, const glm::vec3& background,
@@ -52,10 +52,11 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
             continue;
         }
         const int pixel = int(i / std::size_t(spp));
-        const glm::dvec2 ndc = pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % std::size_t(spp)), width, height);
+        const int row = rect.y0 + pixel / tileWidth;
+        const glm::dvec2 ndc = pattern.ndcOf(rect.x0 + pixel % tileWidth, row, int(i % std::size_t(spp)), width, height);
         list.clear();
         for (std::uint32_t k = runs[i]; k < runs[i + 1]; ++k) list.push_back(bySample[k].interval);
-        color[i] = resolve(ndc, list);
+        color[i] = resolve(ndc, row, list);
     }
     for (int py = rect.y0; py <= rect.y1; ++py)
         for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * std::size_t(width) + std::size_t(px)] = glm::vec3(0.0f);

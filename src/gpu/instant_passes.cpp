@@ -50,7 +50,7 @@ std::size_t InstantPasses::gpuBytes() const {
     return m_frame.buffers.uploadBytes() + m_translucency.bytes() + m_frame.grid.numSamples() * 16 * 3;
 }
 
-void InstantPasses::draw(float t, std::size_t firstInOrderTriangle) {
+void InstantPasses::draw(float t, std::size_t firstInOrderTriangle, glm::vec2 rowCell) {
     const SceneBuffers& buffers = m_frame.buffers;
     const std::size_t numTriangles = buffers.numTriangles();
     const std::size_t numListed = std::min(numTriangles, firstInOrderTriangle);
@@ -83,7 +83,7 @@ void InstantPasses::draw(float t, std::size_t firstInOrderTriangle) {
         setTime(m_translucent, t);
         glDrawArrays(GL_TRIANGLES, 0, GLsizei(numListed * 3));
     }
-    m_translucency.resolve(m_target.color, m_sum);
+    m_translucency.resolve(m_target.color, m_sum, rowCell);
     if (numListed < numTriangles) {
         // In submission order over the resolved colour: GL blends primitives in order.
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -23,8 +23,9 @@ public:
 
     // Clears the running sum (RGBA32F, one texel per sample).
     void clearSum() const;
-    // Draws the scene at time t and adds it to the sum.
-    void draw(float t, std::size_t firstInOrderTriangle = std::numeric_limits<std::size_t>::max());
+    // Draws the scene at time t and adds it to the sum (weighted by each row's exposure of
+    // rowCell when that is a stretch of the shutter: TranslucentResolve::resolve).
+    void draw(float t, std::size_t firstInOrderTriangle = std::numeric_limits<std::size_t>::max(), glm::vec2 rowCell = glm::vec2(0.0f));
 
     const GlTexture& sum() const { return m_sum; }
     const TranslucentResolve& translucency() const { return m_translucency; }

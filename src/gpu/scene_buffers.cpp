@@ -17,6 +17,8 @@ namespace {
 struct SceneBlock {
     glm::vec4 eyeOpen, eyeClose, rotationOpen, rotationClose, slerp, projection, toLight, lightColor, ambient, background;
     glm::ivec4 viewport, flags;
+    glm::vec4 shutter;
+    glm::vec4 shutterCurve[ShutterCurve::kMaxPoints];
 };
 
 struct MaterialData {  // std430, as scene.glsl's MaterialData
@@ -105,6 +107,11 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
     block.background = glm::vec4(scene.background, 1.0f);
     block.viewport = glm::ivec4(width * aa, height * aa, width, height);
     block.flags = glm::ivec4(shading == ShadingMode::Phong ? 1 : 0, aa, isGridPattern ? 1 : 0, 0);
+    const Shutter& shutter = scene.shutter;
+    const std::vector<glm::vec2>& points = shutter.curve.points();
+    block.shutter = glm::vec4(shutter.rollingDuration, float(points.size()), shutter.isBox() ? 1.0f : 0.0f, shutter.curve.isBox() ? 1.0f : 0.0f);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        block.shutterCurve[i] = glm::vec4(points[i], float(shutter.curve.exposureAt(points[i].x)), 0.0f);
     m_uniforms = GlBuffer(sizeof block, &block, 0);
 
     for (const Texture& texture : scene.textures) {

@@ -48,12 +48,13 @@ TranslucentResolve::TranslucentResolve(const SampleGrid& grid, const SceneBuffer
 
 void TranslucentResolve::bindForAppending(GLuint program) const { m_lists.bind(program, kNodeBinding, m_sampleBudget); }
 
-void TranslucentResolve::resolve(const GlTexture& opaque, const GlTexture& sum) {
+void TranslucentResolve::resolve(const GlTexture& opaque, const GlTexture& sum, glm::vec2 rowCell) {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
                     GL_ATOMIC_COUNTER_BARRIER_BIT);
     glUseProgram(m_program->id());
     m_buffers.bind(m_program->id());
     m_lists.bind(m_program->id(), kNodeBinding, m_sampleBudget);
+    glProgramUniform2f(m_program->id(), glGetUniformLocation(m_program->id(), "u_rowCell"), rowCell.x, rowCell.y);
     glBindImageTexture(2, opaque.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     glBindImageTexture(3, sum.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glDispatchCompute(GLuint((m_grid.samplesWide() + 7) / 8), GLuint((m_grid.samplesHigh() + 7) / 8), 1);

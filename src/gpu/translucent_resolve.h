@@ -42,7 +42,9 @@ public:
     void bindForAppending(GLuint program) const;
     // Blends over `opaque` (rgb, 1/w; w = 0 where no opaque surface: the background) and adds
     // to `sum`, both RGBA32F sample textures; counts overflow when the scene has translucency.
-    void resolve(const GlTexture& opaque, const GlTexture& sum);
+    // A rowCell [c0, c1] with c1 > c0 weighs the addition in each row by the row's exposure of
+    // that stretch of the shutter (a rolling shutter's accumulation, exposure::InstantSchedule).
+    void resolve(const GlTexture& opaque, const GlTexture& sum, glm::vec2 rowCell = glm::vec2(0.0f));
     // translucent_layer_overflow_samples and translucent_list_overflow_fragments.
     void report(RenderStats& stats) const;
 

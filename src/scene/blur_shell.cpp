@@ -245,6 +245,8 @@ ShellScene makeShellScene(const Scene& scene, const BlurShell& shell) {
 namespace streak {
 
 ShellScene buildShellScene(const Scene& scene, const BlurShellOptions& options, RenderStats& stats) {
+    if (!scene.shutter.isBox())
+        throw Error("blur-shell draws a trail, not a shutter average: a shutter curve or rolling shutter does not apply to it");
     const BlurShell shell = buildBlurShell(scene, options);
     stats.addTime("silhouette", shell.silhouetteSeconds);
     stats.addTime("shell build", shell.buildSeconds);

@@ -3,6 +3,7 @@
 #include "scene/camera.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
+#include "scene/shutter.h"
 #include "scene/texture.h"
 
 #include <glm/vec3.hpp>
@@ -21,7 +22,7 @@ struct DirectionalLight {
 };
 
 // Scene is everything a renderer needs for one frame: moving meshes, materials, textures, a
-// possibly moving camera, a light and a background. Meshes reference materials and materials
+// possibly moving camera, a light, a background and the shutter. Meshes reference materials and materials
 // reference textures by index; validateScene() checks those indices.
 struct Scene {
     std::string name;
@@ -31,6 +32,7 @@ struct Scene {
     Camera camera;
     DirectionalLight light;
     glm::vec3 background{0.0f};  ///< linear colour of pixels (and time spans) nothing covers
+    Shutter shutter;             ///< how [0, 1] is exposed: box, global by default
 
     std::size_t numTriangles() const;
     bool hasTranslucency() const;

@@ -32,14 +32,13 @@ struct QuadraticThrough {
 // Lighting over a span: Simpson's three points (ends and middle), or n midpoint taps.
 class SpanLighting {
 public:
-    SpanLighting(const Scene& scene, const Material& material, float t0, float t1, const std::array<SurfacePoint, 3>& ends,
-                 int numTaps, const MovingSurfacePoint& point) {
+    SpanLighting(const Scene& scene, const Material& material, const ShutterWindow& window, float t0, float t1,
+                 const std::array<float, 3>& times, const std::array<SurfacePoint, 3>& ends, int numTaps, const MovingSurfacePoint& point) {
         auto light = [&](const SurfacePoint& p, float t) {
             return phongTerms(scene, material, p.position, p.normal, p.isFrontFacing, scene.camera.positionAt(t));
         };
         if (numTaps <= 3) {
-            const float tm = 0.5f * (t0 + t1);
-            const std::array<PhongTerms, 3> s{light(ends[0], t0), light(ends[1], tm), light(ends[2], t1)};
+            const std::array<PhongTerms, 3> s{light(ends[0], times[0]), light(ends[1], times[1]), light(ends[2], times[2])};
             m_diffuse = {s[0].diffuse, s[1].diffuse, s[2].diffuse};
             m_specular = {s[0].specular, s[1].specular, s[2].specular};
             m_mean.diffuse = (s[0].diffuse + 4.0f * s[1].diffuse + s[2].diffuse) / 6.0f;
@@ -48,12 +47,12 @@ public:
         }
         m_taps.reserve(std::size_t(numTaps));
         for (int i = 0; i < numTaps; ++i) {
-            const float t = t0 + (float(i) + 0.5f) / float(numTaps) * (t1 - t0);
+            const float t = window.timeBetween(t0, t1, (float(i) + 0.5f) / float(numTaps));
             SurfacePoint p;
             if (point.at(t, false, p)) m_taps.push_back(light(p, t));
             else if (!m_taps.empty()) m_taps.push_back(m_taps.back());
         }
-        if (m_taps.empty()) m_taps.push_back(light(ends[1], 0.5f * (t0 + t1)));
+        if (m_taps.empty()) m_taps.push_back(light(ends[1], times[1]));
         for (const PhongTerms& tap : m_taps) m_mean.diffuse += tap.diffuse, m_mean.specular += tap.specular;
         m_mean.diffuse /= float(m_taps.size()), m_mean.specular /= float(m_taps.size());
     }
@@ -79,7 +78,10 @@ private:
 
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings) {
-    const std::array<float, 3> times{t0, 0.5f * (t0 + t1), t1};
+    const ShutterWindow& window = settings.window;
+    const std::array<float, 3> times = window.isIdentity() ? std::array<float, 3>{t0, 0.5f * (t0 + t1), t1}
+                                                           : std::array<float, 3>{window.timeBetween(t0, t1, 0.0f), window.timeBetween(t0, t1, 0.5f),
+                                                                                  window.timeBetween(t0, t1, 1.0f)};
     std::array<SurfacePoint, 3> ends;
     for (int i = 0; i < 3; ++i)
         if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
@@ -98,7 +100,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
                                   settings.maxLightingTaps);
     }
     std::optional<SpanLighting> lighting;
-    if (isLit) lighting.emplace(scene, material, t0, t1, ends, lightingTaps, point);
+    if (isLit) lighting.emplace(scene, material, window, t0, t1, times, ends, lightingTaps, point);
 
     // Vertex colours change slowly across a triangle: the one at mid-span serves the whole span.
     const glm::vec4 vertexColor = ends[1].vertexColor;
@@ -129,7 +131,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     for (int i = 0; i < taps; ++i) {
         const float f = (float(i) + 0.5f) / float(taps);
         glm::vec2 uv = ends[1].uv;
-        if (2 * i + 1 != taps && !point.uvAt(t0 + f * (t1 - t0), uv)) continue;
+        if (2 * i + 1 != taps && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
         const glm::vec4 texel = texture.sample(uv, TextureFootprint{duvdxAt(f), duvdyAt(f), pathLod});
         if (isLit) {
             const PhongTerms terms = lighting->at(f);

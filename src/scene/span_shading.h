@@ -1,6 +1,7 @@
 #pragma once
 
 #include "scene/shading.h"
+#include "scene/shutter.h"
 
 namespace streak {
 
@@ -32,6 +33,7 @@ struct SpanShadingSettings {
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
     int samplesPerAxis = 1;        ///< --aa N: the texture footprint is one sample spacing, 1/N pixel
+    ShutterWindow window;          ///< the sample's row of the shutter: taps are even in its exposure
 };
 
 // The mean shaded colour (and opacity) of a point over [t0, t1] of the shutter: the colour of
@@ -46,6 +48,9 @@ struct SpanShadingSettings {
 // - Lighting (Phong): Simpson's rule on the span's ends and middle, or more taps where the
 //   reflected ray turns by more than maxTurnPerTap per tap; each texture tap's albedo is lit by
 //   the lighting terms interpolated to its time.
+//
+// Under a shutter curve or a rolling window the mean is weighted by the row's exposure: taps
+// sit at even steps of exposure (ShutterWindow::timeBetween), not of time.
 //
 // Returns black with alpha 0 when the point cannot be evaluated at the span's ends or middle.
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,

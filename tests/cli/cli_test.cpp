@@ -97,19 +97,70 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_NEAR(linearToSrgb(exr.at(10, 10).x), linearToSrgb(image.at(10, 10).x), 1.0 / 255);
 }
 
-// --frames renders again with the same renderer: the same image, and the stats of the last
-// frame alone (a warm-up frame's counters are not added in).
-TEST(Cli, FramesReportTheLastFrameOnly) {
+// --repeat renders again with the same renderer: the same image, and the stats of the last
+// render alone (a warm-up render's counters are not added in).
+TEST(Cli, RepeatReportsTheLastRenderOnly) {
     test::TempDir dir;
     const std::string base = "render builtin:cubes?n=20 -m stochastic --samples 2 --width 64 --height 48 --threads 1 ";
     ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("one.exr") + " --stats " + dir.file("one.json")).exitCode, 0);
-    ASSERT_EQ(runStreak(dir, base + "--frames 3 -o " + dir.file("three.exr") + " --stats " + dir.file("three.json")).exitCode, 0);
+    ASSERT_EQ(runStreak(dir, base + "--repeat 3 -o " + dir.file("three.exr") + " --stats " + dir.file("three.json")).exitCode, 0);
     EXPECT_TRUE(std::isinf(psnr(readImage(dir.file("one.exr")), readImage(dir.file("three.exr")))));
     const nlohmann::json one = nlohmann::json::parse(readFile(dir.file("one.json")));
     const nlohmann::json three = nlohmann::json::parse(readFile(dir.file("three.json")));
-    EXPECT_EQ(three["counters"]["frames"], 3);
+    EXPECT_EQ(three["counters"]["repeat"], 3);
     EXPECT_GT(one["counters"]["triangle_tests"].get<double>(), 0.0);
     EXPECT_EQ(three["counters"]["triangle_tests"], one["counters"]["triangle_tests"]);
+}
+
+// --shutter-position places the open interval around --frame F: centre opens S/2 frames
+// earlier and end S frames earlier, so the blur is the start-position blur of those frames to
+// the bit (the sliding triangle moves linearly).
+TEST(Cli, ShutterPositionShiftsTheBlurByHalfAndWholeShutters) {
+    test::TempDir dir;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string base = "render " + dir.file("triangle.glb") + " -m analytic --width 48 --height 24 --shutter 6 --camera-pos 1,0,4 --camera-target 1,0,0 ";
+    auto renderAt = [&](const std::string& flags, const std::string& name) {
+        const RunResult r = runStreak(dir, base + flags + " -o " + dir.file(name));
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readImage(dir.file(name));
+    };
+    const Image center = renderAt("--frame 12 --shutter-position center", "center.exr");
+    const Image end = renderAt("--frame 12 --shutter-position end", "end.exr");
+    EXPECT_TRUE(std::isinf(psnr(center, renderAt("--frame 9", "nine.exr"))));
+    EXPECT_TRUE(std::isinf(psnr(end, renderAt("--frame 6", "six.exr"))));
+    EXPECT_TRUE(std::isinf(psnr(renderAt("--frame 12 --shutter-position start", "start.exr"), renderAt("--frame 12", "twelve.exr"))));
+    EXPECT_LT(psnr(center, end), 30.0) << "the positions should differ";
+}
+
+// --frames A:B renders each frame to the output pattern, each equal to rendering that frame
+// alone; stats go one file per frame with a %d, else into one {"frames": [...]}.
+TEST(Cli, SequenceWritesEachFrameAsItsSingleFrameRender) {
+    STREAK_REQUIRE_SHARED_SCENES();
+    test::TempDir dir;
+    const std::string base = "render " + test::sharedScene("CesiumMan/glTF-Binary/CesiumMan.glb") +
+                             " -m motion-path --width 40 --height 30 --fps 24 --rolling-shutter 0.5 ";
+    const RunResult sequence = runStreak(dir, base + "--frames 10:14:2 -o " + dir.file("seq_%03d.exr") + " --stats " + dir.file("seq_%d.json"));
+    ASSERT_EQ(sequence.exitCode, 0) << sequence.err;
+    const RunResult combined = runStreak(dir, base + "--frames 10:14:2 -o " + dir.file("again_%d.exr") + " --stats " + dir.file("all.json"));
+    ASSERT_EQ(combined.exitCode, 0) << combined.err;
+    const nlohmann::json all = nlohmann::json::parse(readFile(dir.file("all.json")));
+    ASSERT_EQ(all["frames"].size(), 3u);
+    for (int i = 0; i < 3; ++i) {
+        const int frame = 10 + 2 * i;
+        SCOPED_TRACE(frame);
+        char name[32];
+        std::snprintf(name, sizeof name, "seq_%03d.exr", frame);
+        ASSERT_EQ(runStreak(dir, base + "--frame " + std::to_string(frame) + " -o " + dir.file("single.exr")).exitCode, 0);
+        const Image single = readImage(dir.file("single.exr"));
+        EXPECT_TRUE(std::isinf(psnr(readImage(dir.file(name)), single)));
+        EXPECT_TRUE(std::isinf(psnr(readImage(dir.file("again_" + std::to_string(frame) + ".exr")), single)));
+        const nlohmann::json stats = nlohmann::json::parse(readFile(dir.file("seq_" + std::to_string(frame) + ".json")));
+        EXPECT_EQ(stats["counters"]["frame"], frame);
+        EXPECT_EQ(all["frames"][std::size_t(i)]["counters"]["frame"], frame);
+        EXPECT_EQ(stats["counters"]["rolling_shutter"], 0.5);
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("seq_011.exr")));
+    EXPECT_LT(psnr(readImage(dir.file("seq_010.exr")), readImage(dir.file("seq_014.exr"))), 40.0) << "the frames should differ";
 }
 
 TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
@@ -168,7 +219,27 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"zero samples", "render builtin:crossing -m accumulation --samples 0 -o " + out},
         {"option a method does not take", "render builtin:crossing -m motion-path --samples 4 -o " + out},
         {"gpu memory on a CPU method", "render builtin:crossing -m motion-path --gpu-memory 64 -o " + out},
-        {"zero frames", "render " + ok + "--frames 0 -o " + out},
+        {"zero repeat", "render " + ok + "--repeat 0 -o " + out},
+        {"a sequence without %d", "render " + triangle + " --frames 0:2 -o " + out},
+        {"a sequence of a built-in scene", "render " + ok + "--frames 0:2 -o " + dir.file("out_%d.png")},
+        {"a backwards range", "render " + triangle + " --frames 3:1 -o " + dir.file("out_%d.png")},
+        {"a non-numeric range", "render " + triangle + " --frames a:b -o " + dir.file("out_%d.png")},
+        {"a count for a range", "render " + triangle + " --frames 3 -o " + dir.file("out_%d.png")},
+        {"a zero step", "render " + triangle + " --frames 0:4:0 -o " + dir.file("out_%d.png")},
+        {"--frame with --frames", "render " + triangle + " --frame 2 --frames 0:2 -o " + dir.file("out_%d.png")},
+        {"a pattern of another conversion", "render " + triangle + " --frames 0:2 -o " + dir.file("out_%s.png")},
+        {"a pattern of two numbers", "render " + triangle + " --frames 0:2 -o " + dir.file("out_%d_%d.png")},
+        {"a sequence into a missing folder", "render " + triangle + " --frames 0:2 -o " + dir.file("no/such/out_%d.png")},
+        {"stats of a sequence into a missing folder", "render " + triangle + " --frames 0:2 -o " + dir.file("out_%d.png") + " --stats " + dir.file("no/s_%d.json")},
+        {"unknown shutter curve", "render " + ok + "--shutter-curve gaussian -o " + out},
+        {"shutter curve not reaching 1", "render " + ok + "--shutter-curve 0:1,0.5:1 -o " + out},
+        {"shutter curve of no opening", "render " + ok + "--shutter-curve 0:0,1:0 -o " + out},
+        {"trapezoid past its middle", "render " + ok + "--shutter-curve trapezoid:0.8 -o " + out},
+        {"zero rolling shutter", "render " + ok + "--rolling-shutter 0 -o " + out},
+        {"rolling shutter above 1", "render " + ok + "--rolling-shutter 1.5 -o " + out},
+        {"shutter position on a built-in scene", "render " + ok + "--shutter-position center -o " + out},
+        {"unknown shutter position", "render " + triangle + " --shutter-position middle -o " + out},
+        {"rolling shutter on a blur shell", "render " + triangle + " -m blur-shell --rolling-shutter 0.5 -o " + out},
         {"zero gpu memory", "render builtin:crossing -m motion-path-gl --gpu-memory 0 -o " + out},
         {"malformed --option", "render builtin:crossing --option tile-cull -o " + out},
         {"bad oracle weights", "render builtin:crossing -m analytic --option oracle-weights=1,2 -o " + out},

@@ -78,12 +78,34 @@ TEST(Resolve, OpaqueHandMadeLists) {
     list = {interval(0.0f, 1.0f, 2.0f, 2.0f), interval(0.0f, 1.0f, 3.0f, 3.0f)};
     const ExactDepth exact = [](std::size_t i, float t) { return i == 0 ? 2.0 : (t < 0.5f ? 1.0 : 3.0); };
     double misordered = 0.0;
-    resolveOpaque(list, w, &exact, &misordered);
+    resolveOpaque(list, w, {}, &exact, &misordered);
     EXPECT_NEAR(misordered, 0.0, 1e-9);  // no cut at 0.5: the middle (t = 0.5) decides the one piece
     list.push_back(interval(0.25f, 0.5f, 9.0f, 9.0f));  // adds cuts at 0.25 and 0.5
     w.resize(3);
-    resolveOpaque(list, w, &exact, &misordered);
+    resolveOpaque(list, w, {}, &exact, &misordered);
     EXPECT_NEAR(misordered, 0.5, 1e-6);
+}
+
+TEST(Resolve, SharesAreTheRowsExposure) {
+    // Under the triangle curve exposure up to t is 2t^2 (t <= 1/2): a near surface over [0, 0.25]
+    // takes 1/8 of the sample, the far one all shutter the other 7/8.
+    const ShutterCurve triangle = ShutterCurve::parse("triangle");
+    const ShutterWindow window{0.0f, 1.0f, &triangle};
+    std::vector<ExposureInterval> list{interval(0.0f, 1.0f, 10.0f, 10.0f), interval(0.0f, 0.25f, 3.0f, 3.0f)};
+    std::vector<float> w(2);
+    EXPECT_NEAR(resolveOpaque(list, w, window), 0.0f, 1e-6f);
+    EXPECT_NEAR(w[1], 0.125f, 1e-6f);
+    EXPECT_NEAR(w[0], 0.875f, 1e-6f);
+    // A rolling row open over [0.5, 0.75] (box) sees none of a surface over [0, 0.5] and half of
+    // one over [0.25, 0.625]; the rest of its window is background.
+    const ShutterWindow row{0.5f, 0.25f, nullptr};
+    list = {interval(0.0f, 0.5f, 1.0f, 1.0f), interval(0.25f, 0.625f, 2.0f, 2.0f)};
+    EXPECT_NEAR(resolveOpaque(list, w, row), 0.5f, 1e-6f);
+    EXPECT_NEAR(w[0], 0.0f, 1e-6f);
+    EXPECT_NEAR(w[1], 0.5f, 1e-6f);
+    list[1].alpha = 0.5f;
+    EXPECT_NEAR(resolveTranslucent(list, w, row), 0.75f, 1e-6f);
+    EXPECT_NEAR(w[1], 0.25f, 1e-6f);
 }
 
 TEST(Resolve, TranslucentHandMadeLists) {

@@ -28,9 +28,73 @@ layout(std140, binding = 0) uniform SceneBlock {
     vec4 u_background;
     ivec4 u_viewport;        // width, height (in samples), pixels wide, pixels high
     ivec4 u_flags;           // lit (Phong) 1 / unlit 0, sample grid N, grid pattern 1 / n-rooks 0, unused
+    vec4 u_shutter;          // rolling duration D, curve points, 1 where exposure is time (box, global), 1 for a box curve
+    vec4 u_shutterCurve[32]; // curve point x, normalised weight w, exposure up to x, unused (scene/shutter.h)
 };
 
 uniform sampler2D u_textures[MAX_TEXTURES];
+
+// The exposure of one sample row (ShutterWindow, scene/shutter.h): the shutter's stretch
+// [start, start + length] under the curve. g_window is the current sample's; a shader that
+// shades samples sets it from their row (sampleRow), else it is the whole shutter.
+struct ShutterWindow {
+    float start;
+    float length;
+    bool isIdentity;  // exposure is time: box curve, global shutter
+};
+ShutterWindow g_window = ShutterWindow(0.0, 1.0, true);
+
+ShutterWindow rowWindow(int row) {
+    float d = u_shutter.x;
+    if (d >= 1.0) return ShutterWindow(0.0, 1.0, u_shutter.z != 0.0);
+    int h = u_viewport.w;
+    return ShutterWindow(h > 1 ? (1.0 - d) * float(row) / float(h - 1) : 0.0, d, false);
+}
+
+// The curve's exposure up to x in [0, 1] (closed form: quadratic within a segment).
+float curveExposure(float x) {
+    if (!(x > 0.0)) return 0.0;
+    if (x >= 1.0) return 1.0;
+    if (u_shutter.w != 0.0) return x;
+    int n = int(u_shutter.y);
+    for (int i = 1; i < n; ++i) {
+        vec4 b = u_shutterCurve[i];
+        if (x < b.x || i == n - 1) {
+            vec4 a = u_shutterCurve[i - 1];
+            float h = x - a.x, slope = (b.y - a.y) / (b.x - a.x);
+            return min(1.0, a.z + h * (a.y + 0.5 * slope * h));
+        }
+    }
+    return 1.0;
+}
+
+// The x whose exposure is u.
+float curvePosition(float u) {
+    u = clamp(u, 0.0, 1.0);
+    if (u_shutter.w != 0.0) return u;
+    int n = int(u_shutter.y);
+    for (int i = 1; i < n; ++i) {
+        vec4 b = u_shutterCurve[i];
+        if (u < b.z || i == n - 1) {
+            vec4 a = u_shutterCurve[i - 1];
+            float slope = (b.y - a.y) / (b.x - a.x), rest = u - a.z, qa = 0.5 * slope, qb = a.y;
+            float h = !(rest > 0.0) ? 0.0
+                    : abs(qa) < 1e-12 ? (qb > 0.0 ? rest / qb : 0.0) : 2.0 * rest / (qb + sqrt(max(0.0, qb * qb + 4.0 * qa * rest)));
+            return clamp(a.x + h, a.x, b.x);
+        }
+    }
+    return 1.0;
+}
+
+float exposureAt(ShutterWindow w, float t) { return w.isIdentity ? clamp(t, 0.0, 1.0) : curveExposure((t - w.start) / w.length); }
+float timeAt(ShutterWindow w, float u) { return w.isIdentity ? u : min(1.0, w.start + w.length * curvePosition(u)); }
+// The time a fraction f of the way through [t0, t1] by the window's exposure.
+float timeBetween(ShutterWindow w, float t0, float t1, float f) {
+    if (w.isIdentity) return t0 + f * (t1 - t0);
+    float u0 = exposureAt(w, t0), u1 = exposureAt(w, t1);
+    if (!(u1 > u0)) return t0 + f * (t1 - t0);
+    return clamp(timeAt(w, u0 + f * (u1 - u0)), t0, t1);
+}
 
 const uint kMaterialMask = 0x7fffffffu;  // triangles[i].w: material, top bit double-sided
 

@@ -1,6 +1,9 @@
 // Per sample, blends the translucent fragments in front of the opaque surface front to back
-// over it (raster/translucency.cpp) and adds the result to the running sum.
+// over it (raster/translucency.cpp) and adds the result to the running sum, weighted by the
+// row's exposure of u_rowCell when it is a stretch of the shutter (else 1).
 layout(local_size_x = 8, local_size_y = 8) in;
+
+uniform vec2 u_rowCell;
 
 layout(rgba32f, binding = 2) uniform readonly image2D u_opaque;  // rgb, 1/w of the opaque surface (0: none)
 layout(rgba32f, binding = 3) uniform image2D u_sum;
@@ -41,5 +44,10 @@ void main() {
         sum += transmittance * layers[i].color.a * layers[i].color.rgb;
         transmittance *= 1.0 - layers[i].color.a;
     }
-    imageStore(u_sum, s, imageLoad(u_sum, s) + vec4(sum + transmittance * color, 0.0));
+    float weight = 1.0;
+    if (u_rowCell.y > u_rowCell.x) {
+        ShutterWindow w = rowWindow(s.y / u_flags.y);
+        weight = exposureAt(w, u_rowCell.y) - exposureAt(w, u_rowCell.x);
+    }
+    imageStore(u_sum, s, imageLoad(u_sum, s) + weight * vec4(sum + transmittance * color, 0.0));
 }

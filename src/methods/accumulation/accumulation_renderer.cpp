@@ -1,6 +1,7 @@
 #include "methods/accumulation/accumulation_renderer.h"
 
 #include "exposure/instant_frame.h"
+#include "exposure/instant_schedule.h"
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -30,27 +31,44 @@ public:
         const exposure::InstantDraw draw{settings.shading};
         double numFragments = 0.0;
 
-        for (int s = 0; s < m_samples; ++s) {
+        const exposure::InstantSchedule schedule(scene.shutter, m_samples, settings.height);
+        const int numInstants = schedule.numInstants();
+        for (int s = 0; s < numInstants; ++s) {
+            const std::pair<int, int> rows = schedule.rows(s);
+            const int firstRow = rows.first, lastRow = rows.second;
+            if (firstRow > lastRow) continue;
             {
                 PhaseTimer timer(context.stats, "setup");
-                slice.setup(geometry, (float(s) + 0.5f) / float(m_samples), viewport, aspect);
+                slice.setup(geometry, schedule.time(s), viewport, aspect);
                 grid.bin(slice.triangles.size(), [&](std::size_t i) { return slice.triangles[i].screen.bounds; });
             }
             PhaseTimer timer(context.stats, "raster+shade");
             std::atomic<std::int64_t> fragments{0};
             grid.forEachTile([&](int tile) {
+                const raster::PixelBounds rect = grid.tileBounds(tile);
+                if (rect.y1 < firstRow || rect.y0 > lastRow) return;
                 exposure::InstantScratch& local = scratch.local();
                 fragments += exposure::drawInstantTile(geometry, slice, grid, tile, pattern, draw, local);
-                raster::addTileToImage(grid.tileBounds(tile), pattern.count(), local.color, 1.0f, sum, settings.width);
+                if (schedule.isUniform()) {
+                    raster::addTileToImage(rect, pattern.count(), local.color, 1.0f, sum, settings.width);
+                    return;
+                }
+                // A rolling shutter: each row weighs the instant by its own window.
+                const std::size_t rowSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(pattern.count());
+                for (int y = rect.y0; y <= rect.y1; ++y)
+                    raster::addTileToImage({rect.x0, y, rect.x1, y}, pattern.count(),
+                                           std::span<const glm::vec3>(local.color).subspan(std::size_t(y - rect.y0) * rowSamples, rowSamples),
+                                           schedule.weight(s, y), sum, settings.width);
             }, /*includeEmpty=*/true);
             numFragments += double(fragments.load());
-            if (context.progress) context.progress->update(double(s + 1) / m_samples);
+            if (context.progress) context.progress->update(double(s + 1) / numInstants);
         }
 
         Image image(settings.width, settings.height);
-        const float norm = 1.0f / float(m_samples);
+        const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
         for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm;
         context.stats.setCounter("time_samples", m_samples);
+        context.stats.setCounter("instants", numInstants);
         context.stats.setCounter("fragments", numFragments);
         return image;
     }

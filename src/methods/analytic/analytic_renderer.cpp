@@ -232,7 +232,9 @@ private:
         // Per sample: resolve the intervals exactly and shade what shows (exposure::resolveSample).
         exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
                               std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
-                              [&](const glm::dvec2& ndc, std::vector<ExposureInterval>& list) {
+                              [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
+            SpanShadingSettings spanShading = frame.spanShading;
+            spanShading.window = scene.shutter.rowWindow(row, height);
             std::optional<exposure::ExactDepth> exactDepth;
             if (frame.options.checkDepthOrder)
                 exactDepth = [&](std::size_t k, float t) {
@@ -240,18 +242,15 @@ private:
                     return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
                 };
             return exposure::resolveSample(
-                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, scene.background,
+                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, spanShading.window, scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
-                [&](std::uint32_t triangle, float t0, float t1) { return shadeSpan(frame, triangle, t0, t1, ndc, scratch.movingTriangles); },
+                [&](std::uint32_t triangle, float t0, float t1) {
+                    return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, spanShading, triangle, t0, t1,
+                                                       ndc, scratch.movingTriangles);
+                },
                 scratch.resolve, counters.resolve);
         });
-    }
-
-    ShadedColor shadeSpan(const Frame& frame, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
-                          exposure::MovingTriangleCache& cache) const {
-        return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc,
-                                           cache);
     }
 
     Options m_options;

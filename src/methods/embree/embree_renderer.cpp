@@ -117,14 +117,15 @@ public:
         tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), [&](const tbb::blocked_range<int>& rows) {
             std::vector<std::pair<unsigned, unsigned>> skipped;
             std::int64_t localRays = 0, localOverflow = 0;
-            for (int py = rows.begin(); py != rows.end(); ++py)
+            for (int py = rows.begin(); py != rows.end(); ++py) {
+                const ShutterWindow window = scene.shutter.rowWindow(py, height);  // times stratified in its exposure
                 for (int px = 0; px < width; ++px) {
                     glm::vec3 sum(0.0f);
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(width) + std::uint64_t(px);
                     for (int a = 0; a < spp; ++a) {
                         const glm::dvec2 ndc = pattern.ndcOf(px, py, a, width, height);
                         for (int j = 0; j < m_options.samples; ++j) {
-                            const float t = stratifiedSampleTime(settings.seed, pixel, a, j, m_options.samples);
+                            const float t = window.timeAt(stratifiedSampleTime(settings.seed, pixel, a, j, m_options.samples));
                             const CameraPose pose = scene.camera.poseAt(t);
                             const glm::mat3 worldFromCamera = glm::mat3_cast(pose.worldFromCamera);
                             // View z is -1, so a ray's distance is the view depth (clip w).
@@ -140,6 +141,7 @@ public:
                     }
                     image.at(px, py) = sum / float(spp * m_options.samples);
                 }
+            }
             rays += localRays;
             overflowSamples += localOverflow;
         });

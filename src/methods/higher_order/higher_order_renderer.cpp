@@ -282,13 +282,15 @@ private:
 
         exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
                               std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
-                              [&](const glm::dvec2& ndc, std::vector<ExposureInterval>& list) {
+                              [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
+            SpanShadingSettings spanShading = frame.spanShading;
+            spanShading.window = scene.shutter.rowWindow(row, height);
             return exposure::resolveSample(
-                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, scene.background,
+                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, spanShading.window, scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
                 [&](std::uint32_t triangle, float t0, float t1) {
-                    return exposure::shadeCurvedSpan(geometry, frame.viewport, frame.settings.shading, frame.spanShading, triangle, t0, t1, ndc,
+                    return exposure::shadeCurvedSpan(geometry, frame.viewport, frame.settings.shading, spanShading, triangle, t0, t1, ndc,
                                                      scratch.curved);
                 },
                 scratch.resolve, counters.resolve);

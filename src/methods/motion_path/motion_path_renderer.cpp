@@ -194,8 +194,11 @@ private:
             for (int i = 0; i < n; ++i) events.push_back(float(p.t0 + bounds[i] * (double(p.t1) - double(p.t0))));
         }
 
-        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, exposure::MovingTriangleCache& cache) const {
-            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, spanShading, triangle, t0, t1, ndc, cache);
+        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, const ShutterWindow& window,
+                              exposure::MovingTriangleCache& cache) const {
+            SpanShadingSettings rowShading = spanShading;
+            rowShading.window = window;
+            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, rowShading, triangle, t0, t1, ndc, cache);
         }
 
         const Scene& scene;
@@ -213,9 +216,9 @@ private:
     // Builds the intervals of one sample from its fragments (sorted by path), appending them to
     // `out`. Depth and facing are all the resolve needs; opaque intervals are shaded later, and
     // only if visible. Translucent ones are shaded now, since their opacity (texture alpha)
-    // decides what shows behind them.
-    void buildIntervals(const Frame& frame, std::span<const Fragment> fragments, const glm::dvec2& ndc, TileScratch& scratch,
-                        std::vector<Interval>& out) const {
+    // decides what shows behind them. Spans the sample's row does not expose are dropped.
+    void buildIntervals(const Frame& frame, std::span<const Fragment> fragments, const glm::dvec2& ndc, const ShutterWindow& window,
+                        TileScratch& scratch, std::vector<Interval>& out) const {
         for (std::size_t i = 0; i < fragments.size(); ++i) {
             if (i > 0 && fragments[i].path == fragments[i - 1].path) continue;
             const exposure::TriangleSegment& path = frame.paths[fragments[i].path];
@@ -226,6 +229,7 @@ private:
             frame.exactSpans(path, moving, ndc, scratch.events);
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
                 const float t0 = scratch.events[e], t1 = scratch.events[e + 1];
+                if (!window.isIdentity() && !(window.measure(t0, t1) > 0.0f)) continue;
                 const double u0 = path.localTime(t0), u1 = path.localTime(t1);
                 const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
                 // The triangle cannot turn over inside a span (its edges would have to pass the
@@ -240,7 +244,7 @@ private:
                 interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
                 interval.source = fragments[i].path;
                 if (material.isTranslucent()) {
-                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc, scratch.movingTriangles);
+                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc, window, scratch.movingTriangles);
                     interval.color = shaded.color, interval.alpha = shaded.alpha;
                 }
                 out.push_back(interval);
@@ -254,6 +258,12 @@ private:
         const int pixel = int(i / spp);
         return frame.pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
                                    frame.viewport.height);
+    }
+
+    // The shutter window of sample i's row.
+    static ShutterWindow sampleWindow(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
+        const int tileWidth = rect.x1 - rect.x0 + 1;
+        return frame.scene.shutter.rowWindow(rect.y0 + int(i / std::size_t(frame.pattern.count())) / tileWidth, frame.viewport.height);
     }
 
     void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
@@ -315,7 +325,7 @@ private:
                     std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
                 }
                 const std::size_t first = scratch.built.size();
-                buildIntervals(frame, fragments, sampleNdc(frame, rect, i), scratch, scratch.built);
+                buildIntervals(frame, fragments, sampleNdc(frame, rect, i), sampleWindow(frame, rect, i), scratch, scratch.built);
                 if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
                     // Over budget: keep the nearest intervals.
                     ++counters.intervalOverflowSamples;
@@ -370,7 +380,8 @@ private:
             scratch.backgroundWeights[i] =
                 motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
                                             std::span(scratch.weights).subspan(begin, end - begin),
-                                            options.exactWeights ? motion_path::OpaqueWeights::Exact : motion_path::OpaqueWeights::Slices);
+                                            options.exactWeights ? motion_path::OpaqueWeights::Exact : motion_path::OpaqueWeights::Slices,
+                                            sampleWindow(frame, rect, i));
         }
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
@@ -381,6 +392,7 @@ private:
         scratch.color.resize(numSamples);
         for (std::size_t i = 0; i < numSamples; ++i) {
             glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
+            const ShutterWindow window = sampleWindow(frame, rect, i);
             const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
             std::vector<exposure::VisiblePiece>& spans = scratch.spans;
             spans.clear();
@@ -393,9 +405,9 @@ private:
                 else {
                     bool isWhole;
                     if (options.exactWeights) {
-                        isWhole = scratch.weights[k] >= (interval.t1 - interval.t0) * (1.0f - 1e-5f);
+                        isWhole = scratch.weights[k] >= window.measure(interval.t0, interval.t1) * (1.0f - 1e-5f);
                     } else {
-                        const int bits = motion_path::TimeMask::span(interval.t0, interval.t1, options.maskBits).count();
+                        const int bits = motion_path::TimeMask::exposed(interval.t0, interval.t1, window, options.maskBits).count();
                         isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
                     }
                     spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
@@ -404,7 +416,8 @@ private:
             if (!spans.empty()) {
                 exposure::mergeAbuttingPieces(spans);
                 const glm::dvec2 ndc = sampleNdc(frame, rect, i);
-                for (const exposure::VisiblePiece& span : spans) sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc, scratch.movingTriangles).color * span.weight;
+                for (const exposure::VisiblePiece& span : spans)
+                    sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc, window, scratch.movingTriangles).color * span.weight;
                 counters.shadedIntervals += std::int64_t(spans.size());
             }
             scratch.color[i] = sum;

@@ -11,13 +11,13 @@ namespace streak::motion_path {
 
 namespace {
 
-float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<float> weights) {
+float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<float> weights, const ShutterWindow& window) {
     const TimeMask full = TimeMask::full(numBits);
     const float scale = 1.0f / float(numBits);
     TimeMask accumulated;
     std::size_t i = 0;
     for (; i < sorted.size(); ++i) {
-        const TimeMask current = TimeMask::span(sorted[i].t0, sorted[i].t1, numBits);
+        const TimeMask current = TimeMask::exposed(sorted[i].t0, sorted[i].t1, window, numBits);
         weights[i] = float(current.minus(accumulated).count()) * scale;
         accumulated |= current;
         if (accumulated == full) break;
@@ -26,7 +26,7 @@ float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<flo
     return float(numBits - accumulated.count()) * scale;
 }
 
-float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights) {
+float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window) {
     // The union of the spans so far, disjoint and in time order.
     thread_local std::vector<std::pair<float, float>> covered;
     covered.clear();
@@ -37,14 +37,14 @@ float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weig
         weights[i] = 0.0f;
         if (!(t1 > t0)) continue;
         // Spans overlapping [t0, t1] hide part of it and merge with it into one.
-        float hidden = 0.0f, lo = t0, hi = t1;
+        float hidden = 0.0f, lo = t0, hi = t1;  // hidden: exposure
         auto first = std::lower_bound(covered.begin(), covered.end(), t0, [](const auto& span, float t) { return span.second <= t; });
         auto last = first;
         for (; last != covered.end() && last->first < t1; ++last) {
-            hidden += std::min(last->second, t1) - std::max(last->first, t0);
+            hidden += window.measure(std::max(last->first, t0), std::min(last->second, t1));
             lo = std::min(lo, last->first), hi = std::max(hi, last->second);
         }
-        const float visible = std::max(0.0f, (t1 - t0) - hidden);
+        const float visible = std::max(0.0f, window.measure(t0, t1) - hidden);
         weights[i] = visible;
         coveredLength += visible;
         covered.insert(covered.erase(first, last), {lo, hi});
@@ -53,14 +53,14 @@ float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weig
     return std::max(0.0f, 1.0f - coveredLength);
 }
 
-float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::span<float> weights) {
+float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::span<float> weights, const ShutterWindow& window) {
     std::array<float, TimeMask::kMaxBits> transmittance;
     std::fill_n(transmittance.begin(), numBits, 1.0f);
     TimeMask opaque;  // slices already fully covered
     for (std::size_t i = 0; i < sorted.size(); ++i) {
         const Interval& interval = sorted[i];
         weights[i] = 0.0f;
-        const TimeMask open = TimeMask::span(interval.t0, interval.t1, numBits).minus(opaque);
+        const TimeMask open = TimeMask::exposed(interval.t0, interval.t1, window, numBits).minus(opaque);
         if (open.isEmpty()) continue;
         float sum = 0.0f;
         for (int b = 0; b < numBits; ++b) {
@@ -78,15 +78,17 @@ float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::spa
 
 }  // namespace
 
-float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights, OpaqueWeights opaque) {
+float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights, OpaqueWeights opaque,
+                     const ShutterWindow& window) {
     const bool isTranslucent = std::any_of(sorted.begin(), sorted.end(), [](const Interval& i) { return i.alpha < 1.0f; });
-    if (isTranslucent) return resolveTranslucent(sorted, numBits, weights);
-    return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights) : resolveOpaque(sorted, numBits, weights);
+    if (isTranslucent) return resolveTranslucent(sorted, numBits, weights, window);
+    return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights, window) : resolveOpaque(sorted, numBits, weights, window);
 }
 
-glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background, OpaqueWeights opaque) {
+glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background, OpaqueWeights opaque,
+                           const ShutterWindow& window) {
     std::vector<float> weights(sorted.size());
-    glm::vec3 sum = background * resolveWeights(sorted, numBits, weights, opaque);
+    glm::vec3 sum = background * resolveWeights(sorted, numBits, weights, opaque, window);
     for (std::size_t i = 0; i < sorted.size(); ++i) sum += sorted[i].color * weights[i];
     return sum;
 }

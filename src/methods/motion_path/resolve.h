@@ -1,6 +1,7 @@
 #pragma once
 
 #include "methods/motion_path/interval.h"
+#include "scene/shutter.h"
 
 #include <glm/vec3.hpp>
 
@@ -23,12 +24,15 @@ namespace streak::motion_path {
 // slices: each shows its span minus the union of the spans before it, which the depth-time
 // sort has put in front. Masks quantise each visible piece to whole slices (error up to 1/n per
 // piece); exact weights have none, at the cost of a short list of time spans per sample.
+//
+// Under a shutter curve or a rolling row (`window`) the slices are slices of the row's exposure
+// (TimeMask::exposed) and exact weights its measure of the spans: each still sums to 1.
 enum class OpaqueWeights { Slices, Exact };
 float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights,
-                     OpaqueWeights opaque = OpaqueWeights::Slices);
+                     OpaqueWeights opaque = OpaqueWeights::Slices, const ShutterWindow& window = {});
 
 // The resolved colour, from the intervals' own colours.
 glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background,
-                           OpaqueWeights opaque = OpaqueWeights::Slices);
+                           OpaqueWeights opaque = OpaqueWeights::Slices, const ShutterWindow& window = {});
 
 }  // namespace streak::motion_path

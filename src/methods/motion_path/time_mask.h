@@ -1,5 +1,7 @@
 #pragma once
 
+#include "scene/shutter.h"
+
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -16,6 +18,11 @@ public:
     // The slices whose centres (i + 1/2)/n lie in [t0, t1): |count/n - (t1 - t0)| <= 1/n.
     static TimeMask span(float t0, float t1, int numBits);
     static TimeMask full(int numBits) { return span(0.0f, 1.0f, numBits); }
+    // The slices of a row's exposure (not of time) that [t0, t1] covers: under a shutter curve
+    // or a rolling window every slice still weighs 1/n (span() itself for the identity window).
+    static TimeMask exposed(float t0, float t1, const ShutterWindow& window, int numBits) {
+        return window.isIdentity() ? span(t0, t1, numBits) : span(window.exposureAt(t0), window.exposureAt(t1), numBits);
+    }
 
     TimeMask operator|(const TimeMask& o) const { return combine(o, [](std::uint64_t a, std::uint64_t b) { return a | b; }); }
     TimeMask operator&(const TimeMask& o) const { return combine(o, [](std::uint64_t a, std::uint64_t b) { return a & b; }); }

@@ -28,6 +28,10 @@ public:
         }
         exposure::ReconstructionOptions options = m_options;
         options.seed = settings.seed;
+        // The shutter only by its velocity scale: a rolling shutter's rows see D of the motion;
+        // the curve's shape and the rows' offsets in time are not modelled (one instant, box filter).
+        options.velocityScale = scene.shutter.rollingDuration;
+        context.stats.setInfo("shutter_model", "velocity scale only");
         exposure::clampVelocities(frame, options);
         PhaseTimer timer(context.stats, "filter");
         Image image = exposure::reconstruct(frame, options);

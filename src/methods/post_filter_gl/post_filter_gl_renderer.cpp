@@ -81,6 +81,8 @@ public:
             glUseProgram(pixels.id());
             buffers.bind(pixels.id());
             glProgramUniform1f(pixels.id(), glGetUniformLocation(pixels.id(), "u_maxRadius"), m_options.maxRadius);
+            // The shutter only by its velocity scale, as post-filter.
+            glProgramUniform1f(pixels.id(), glGetUniformLocation(pixels.id(), "u_velocityScale"), scene.shutter.rollingDuration);
             glBindImageTexture(0, passes.sum().id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
             glBindImageTexture(1, motion.color.id(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
             glBindImageTexture(2, pixelColor.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -115,6 +117,7 @@ public:
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         Image image = gpu::readSampleGrid(filtered, gpu::SampleGrid{width, height, 1});
         context.stats.setCounter("samples_on_grid", 1);
+        context.stats.setInfo("shutter_model", "velocity scale only");
         context.stats.setCounter("tiles", double(tilesWide * tilesHigh));
         passes.translucency().report(context.stats);
         context.stats.setCounter("gpu_memory_bytes", double(passes.gpuBytes() + frame.grid.numSamples() * 16 * 2 + std::size_t(width) * height * 16 * 3));

@@ -57,7 +57,10 @@ public:
         std::atomic<std::int64_t> tests{0};
 
         for (int j = 0; j < m_samples; ++j) {
-            const float t0 = float(j) / float(m_samples), t1 = float(j + 1) / float(m_samples);
+            // Stratum j's times in every row: its share of the exposure, from the top row's
+            // window (the earliest) to the bottom row's.
+            const float t0 = scene.shutter.rowWindow(0, settings.height).timeAt(float(j) / float(m_samples));
+            const float t1 = scene.shutter.rowWindow(settings.height - 1, settings.height).timeAt(float(j + 1) / float(m_samples));
             {
                 PhaseTimer timer(context.stats, "bounds");
                 tbb::parallel_for(std::size_t(0), bounds.size(), [&](std::size_t i) { bounds[i] = frame.spaceTimeBounds(i, t0, t1); });
@@ -201,14 +204,17 @@ private:
 
         scratch.time.resize(numSamples);
         scratch.clipFromWorld.resize(frame.isCameraStatic ? 0 : numSamples);
-        for (int py = rect.y0; py <= rect.y1; ++py)
+        for (int py = rect.y0; py <= rect.y1; ++py) {
+            // Stratified in the row's exposure, so a curve or rolling window places the times.
+            const ShutterWindow window = frame.scene.shutter.rowWindow(py, frame.viewport.height);
             for (int px = rect.x0; px <= rect.x1; ++px)
                 for (int a = 0; a < spp; ++a) {
                     const std::size_t i = sampleIndex(px, py, a);
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(frame.viewport.width) + std::uint64_t(px);
-                    scratch.time[i] = stratifiedSampleTime(frame.settings.seed, pixel, a, j, m_samples);
+                    scratch.time[i] = window.timeAt(stratifiedSampleTime(frame.settings.seed, pixel, a, j, m_samples));
                     if (!frame.isCameraStatic) scratch.clipFromWorld[i] = frame.clipFromWorldAt(scratch.time[i]);
                 }
+        }
         scratch.nearest.assign(numSamples, NearestHit{});
         scratch.translucent.clear();
 

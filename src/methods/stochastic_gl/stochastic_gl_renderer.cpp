@@ -34,16 +34,19 @@ const gpu::GlProgram& buildPassProgram(std::map<std::string, std::string> define
                              defines);
 }
 
-// Every sample's time in `stratum`, one float per sample texel (rows top first).
-void fillSampleTimes(const gpu::SampleGrid& grid, std::uint64_t seed, int stratum, int numStrata, std::vector<float>& times) {
+// Every sample's time in `stratum`, one float per sample texel (rows top first), stratified in its
+// row's exposure of the shutter as stochastic's are.
+void fillSampleTimes(const gpu::SampleGrid& grid, const Shutter& shutter, std::uint64_t seed, int stratum, int numStrata,
+                     std::vector<float>& times) {
     const int n = grid.aa, wide = grid.samplesWide();
     times.resize(grid.numSamples());
     tbb::parallel_for(0, grid.samplesHigh(), [&](int y) {
         const int py = y / n, j = y % n;
+        const ShutterWindow window = shutter.rowWindow(py, grid.height);
         for (int x = 0; x < wide; ++x) {
             const int px = x / n, i = x % n;
             const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(grid.width) + std::uint64_t(px);
-            times[std::size_t(y) * wide + x] = stratifiedSampleTime(seed, pixel, j * n + i, stratum, numStrata);
+            times[std::size_t(y) * wide + x] = window.timeAt(stratifiedSampleTime(seed, pixel, j * n + i, stratum, numStrata));
         }
     });
 }
@@ -97,11 +100,13 @@ public:
             for (int j = 0; j < m_options.samples; ++j) {
                 {
                     PhaseTimer timesTimer(context.stats, "sample times");
-                    fillSampleTimes(grid, settings.seed, j, m_options.samples, times);
+                    fillSampleTimes(grid, scene.shutter, settings.seed, j, m_options.samples, times);
                     glTextureSubImage2D(sampleTimes.id(), 0, 0, 0, grid.samplesWide(), grid.samplesHigh(), GL_RED, GL_FLOAT,
                                         times.data());
                 }
-                const float t0 = float(j) / float(m_options.samples), t1 = float(j + 1) / float(m_options.samples);
+                // The stratum's times in every row, top row's window to bottom row's (as stochastic).
+                const float t0 = scene.shutter.rowWindow(0, settings.height).timeAt(float(j) / float(m_options.samples));
+                const float t1 = scene.shutter.rowWindow(settings.height - 1, settings.height).timeAt(float(j + 1) / float(m_options.samples));
                 timer.begin("opaque");
                 glBindFramebuffer(GL_FRAMEBUFFER, opaqueTarget.framebuffer.id());
                 glEnable(GL_DEPTH_TEST);

@@ -23,6 +23,20 @@ TEST(TimeMask, SpansByCentreInclusion) {
     EXPECT_TRUE(wide.test(64) && wide.test(51) && wide.test(204) && !wide.test(205) && !wide.test(50));
 }
 
+TEST(TimeMask, ExposedSlicesAreSlicesOfTheRowsExposure) {
+    // Triangle curve: [0, 0.5] is half the exposure, [0, 0.25] an eighth.
+    const ShutterCurve triangle = ShutterCurve::parse("triangle");
+    const ShutterWindow window{0.0f, 1.0f, &triangle};
+    EXPECT_EQ(TimeMask::exposed(0.0f, 0.5f, window, 64).count(), 32);
+    EXPECT_EQ(TimeMask::exposed(0.0f, 0.25f, window, 64).count(), 8);
+    // A rolling row open over [0.5, 0.75]: nothing before it, all of it from 0.5 on.
+    const ShutterWindow row{0.5f, 0.25f, nullptr};
+    EXPECT_TRUE(TimeMask::exposed(0.0f, 0.5f, row, 64).isEmpty());
+    EXPECT_EQ(TimeMask::exposed(0.5f, 1.0f, row, 64), TimeMask::full(64));
+    // The identity window is span() itself.
+    EXPECT_EQ(TimeMask::exposed(0.3f, 0.7f, ShutterWindow{}, 128), TimeMask::span(0.3f, 0.7f, 128));
+}
+
 TEST(TimeMask, OcclusionLogic) {
     const TimeMask front = TimeMask::span(0.0f, 0.5f, 32), back = TimeMask::span(0.25f, 1.0f, 32);
     EXPECT_EQ(back.minus(front).count(), 16);

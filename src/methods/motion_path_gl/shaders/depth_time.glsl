@@ -52,3 +52,9 @@ void spanMask(float t0, float t1, int numBits, out uint mask[kMaskWords]) {
         mask[w] = lo >= hi ? 0u : (hi - lo == 32 ? 0xffffffffu : ((1u << uint(hi - lo)) - 1u)) << uint(lo - w * 32);
     }
 }
+
+// The slices of the sample row's exposure (g_window) that [t0, t1] covers (TimeMask::exposed).
+void exposedMask(float t0, float t1, int numBits, out uint mask[kMaskWords]) {
+    if (g_window.isIdentity) spanMask(t0, t1, numBits, mask);
+    else spanMask(exposureAt(g_window, t0), exposureAt(g_window, t1), numBits, mask);
+}

@@ -1,7 +1,7 @@
 // motion-path-gl pass 2, one invocation per sample: gathers the sample's intervals (the nearest
 // MAX_INTERVALS on overflow), shades the translucent ones (their alpha decides what shows
 // behind them), sorts in depth-time (split crossings, then Hong & Oh's four tests), resolves
-// with u_maskBits-bit time masks (per-slice transmittance when translucent), and shades only
+// with u_maskBits-bit masks of the row's exposure (per-slice transmittance when translucent), and shades only
 // the visible opaque pieces, wholly visible pieces of one triangle that abut merged first.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -36,7 +36,7 @@ float resolveOpaque(int n) {
     for (int i = 0; i < n; ++i) {
         weights[i] = 0.0;
         if (covered == u_maskBits) continue;
-        spanMask(intervals[i].t0, intervals[i].t1, u_maskBits, current);
+        exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, current);
         int visible = 0;
         for (int w = 0; w < kMaskWords; ++w) {
             visible += bitCount(current[w] & ~accumulated[w]);
@@ -55,7 +55,7 @@ float resolveTranslucent(int n) {
     for (int w = 0; w < kMaskWords; ++w) opaque[w] = 0u;
     for (int i = 0; i < n; ++i) {
         weights[i] = 0.0;
-        spanMask(intervals[i].t0, intervals[i].t1, u_maskBits, open);
+        exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, open);
         float alpha = intervals[i].color.a, sum = 0.0;
         for (int w = 0; w < kMaskWords; ++w) {
             uint bits = open[w] & ~opaque[w];
@@ -79,6 +79,7 @@ void main() {
     ivec2 s = ivec2(gl_GlobalInvocationID.xy);
     if (s.x >= u_viewport.x || s.y >= u_viewport.y) return;
     dvec2 ndc = sampleNdc(s);
+    g_window = rowWindow(s.y / u_flags.y);  // masks and span taps in the row's exposure
 
     // Gather, keeping the nearest MAX_INTERVALS, sorted by minimum depth.
     int n = 0;
@@ -169,7 +170,7 @@ void main() {
         }
         // Whole: visible all through its span; the weight then records the mask count.
         uint mask[kMaskWords];
-        spanMask(intervals[i].t0, intervals[i].t1, u_maskBits, mask);
+        exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, mask);
         int bits = 0;
         for (int w = 0; w < kMaskWords; ++w) bits += bitCount(mask[w]);
         intervals[i].color.a = weights[i] * float(u_maskBits) >= float(bits) - 0.5 ? 1.0 : 0.0;

@@ -106,7 +106,9 @@ vec3 quadraticThrough(vec3 a, vec3 m, vec3 b, float f) {
 
 vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     SpanPoint point = spanPoint(tri, ndc);
-    float times[3] = float[3](t0, 0.5 * (t0 + t1), t1);
+    float times[3] = g_window.isIdentity ? float[3](t0, 0.5 * (t0 + t1), t1)
+                                         : float[3](timeBetween(g_window, t0, t1, 0.0), timeBetween(g_window, t0, t1, 0.5),
+                                                    timeBetween(g_window, t0, t1, 1.0));
     SurfacePoint ends[3];
     for (int i = 0; i < 3; ++i)
         if (!surfaceAt(point, times[i], true, ends[i])) return vec4(0.0);
@@ -130,7 +132,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
         } else {
             int used = 0;
             for (int i = 0; i < lightingTaps; ++i) {
-                float t = t0 + (float(i) + 0.5) / float(lightingTaps) * (t1 - t0);
+                float t = timeBetween(g_window, t0, t1, (float(i) + 0.5) / float(lightingTaps));
                 SurfacePoint sp;
                 if (surfaceAt(point, t, false, sp)) taps[used++] = phongTerms(m, sp.position, sp.normal, sp.isFrontFacing, eyeAt(t));
                 else if (used > 0) taps[used] = taps[used - 1], ++used;
@@ -167,7 +169,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     for (int i = 0; i < numTaps; ++i) {
         float f = (float(i) + 0.5) / float(numTaps);
         vec2 uv = ends[1].uv;
-        if (2 * i + 1 != numTaps && !uvAt(point, t0 + f * (t1 - t0), uv)) continue;
+        if (2 * i + 1 != numTaps && !uvAt(point, timeBetween(g_window, t0, t1, f), uv)) continue;
         vec2 duvdx = quadraticThrough(vec3(ends[0].duvdx, 0.0), vec3(ends[1].duvdx, 0.0), vec3(ends[2].duvdx, 0.0), f).xy;
         vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
         vec4 texel = sampleFootprint(tex, uv, duvdx, duvdy, pathLod);

@@ -7,6 +7,7 @@ layout(rgba32f, binding = 1) uniform readonly image2D u_sampleMotion;
 layout(rgba32f, binding = 2) uniform writeonly image2D u_pixelColor;
 layout(rgba32f, binding = 3) uniform writeonly image2D u_pixelMotion;  // velocity, depth (1e30: background)
 uniform float u_maxRadius;
+uniform float u_velocityScale;  // ReconstructionOptions::velocityScale
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -21,7 +22,7 @@ void main() {
             vec4 m = imageLoad(u_sampleMotion, s);
             if (m.w > 0.0 && m.z < nearest.z) nearest = m;
         }
-    vec2 v = nearest.xy;
+    vec2 v = nearest.xy * u_velocityScale;
     float speed = length(v);
     if (!(speed >= 0.5)) v = vec2(0.0);
     else if (speed > u_maxRadius) v *= u_maxRadius / speed;
