@@ -1,0 +1,193 @@
+// The Python module `streak`: the public API (include/streak/streak.h) with numpy arrays in
+// and out. Errors are streak.Error with the command line's one-line message.
+
+#include <streak/streak.h>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+
+namespace py = pybind11;
+namespace sk = streak::api;
+
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// A float array of the given rank whose last dimension is `last` (0: any), or Error naming it.
+FloatArray floats(const py::handle& object, const char* name, int rank, py::ssize_t last, const char* shape) {
+    FloatArray a;
+    try {
+        a = FloatArray::ensure(object);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a || a.ndim() != rank || (last > 0 && a.shape(rank - 1) != last))
+        throw streak::Error(std::string(name) + " must be a float array of shape " + shape);
+    return a;
+}
+
+std::vector<float> flat(const FloatArray& a) { return std::vector<float>(a.data(), a.data() + a.size()); }
+
+std::array<float, 3> triple(const py::handle& object, const char* name) {
+    const FloatArray a = floats(object, name, 1, 3, "(3,)");
+    return {a.at(0), a.at(1), a.at(2)};
+}
+
+py::array_t<float> arrayOf(const sk::Image& image) {
+    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
+    std::copy(image.rgb.begin(), image.rgb.end(), out.mutable_data());
+    return out;
+}
+
+sk::Image imageOf(const py::handle& object, const char* name) {
+    const FloatArray a = floats(object, name, 3, 3, "(H, W, 3)");
+    sk::Image image;
+    image.height = int(a.shape(0)), image.width = int(a.shape(1));
+    image.rgb = flat(a);
+    return image;
+}
+
+sk::Camera cameraOf(const py::dict& camera) {
+    sk::Camera c;
+    for (const auto& [key, value] : camera) {
+        const std::string k = py::str(key);
+        if (k == "position") c.open.position = triple(value, "camera['position']");
+        else if (k == "target") c.open.target = triple(value, "camera['target']");
+        else if (k == "up") c.open.up = triple(value, "camera['up']");
+        else if (k == "fov") c.verticalFovDegrees = value.cast<float>();
+        else if (k == "znear") c.zNear = value.cast<float>();
+        else if (k != "position_end" && k != "target_end")
+            throw streak::Error("camera: unknown key '" + k + "' (position, target, up, fov, znear, position_end, target_end)");
+    }
+    c.close = c.open;
+    if (camera.contains("position_end")) c.close.position = triple(camera["position_end"], "camera['position_end']");
+    if (camera.contains("target_end")) c.close.target = triple(camera["target_end"], "camera['target_end']");
+    return c;
+}
+
+sk::Scene fromArrays(const py::handle& keys, const py::handle& indices, const py::object& uvs, const py::object& normals,
+                     const py::object& texture, const py::dict& camera, const py::object& baseColor, bool doubleSided,
+                     const py::object& background) {
+    const FloatArray k = floats(keys, "keys", 3, 3, "(K, V, 3): K key poses of V vertices");
+    sk::Mesh mesh;
+    mesh.keys = int(k.shape(0));
+    mesh.positions = flat(k);
+    py::array_t<long long, py::array::c_style | py::array::forcecast> tri;
+    try {
+        tri = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(indices);
+    } catch (const py::error_already_set&) {
+    }
+    if (!tri || tri.ndim() != 2 || tri.shape(1) != 3) throw streak::Error("indices must be an integer array of shape (T, 3)");
+    for (py::ssize_t i = 0; i < tri.size(); ++i) {
+        const long long v = tri.data()[i];
+        if (v < 0 || v >= k.shape(1))
+            throw streak::Error("indices: index " + std::to_string(v) + " is out of range (" + std::to_string(k.shape(1)) + " vertices)");
+        mesh.indices.push_back(std::uint32_t(v));
+    }
+    if (!uvs.is_none()) {
+        const FloatArray u = floats(uvs, "uvs", 2, 2, "(V, 2)");
+        if (u.shape(0) != k.shape(1)) throw streak::Error("uvs must have one row per vertex (" + std::to_string(k.shape(1)) + ")");
+        mesh.uvs = flat(u);
+    }
+    if (!normals.is_none()) {
+        const FloatArray n = floats(normals, "normals", 3, 3, "(K, V, 3), as keys");
+        if (n.shape(0) != k.shape(0) || n.shape(1) != k.shape(1)) throw streak::Error("normals must have the shape of keys");
+        mesh.normals = flat(n);
+    }
+    std::vector<sk::Texture> textures;
+    sk::Material material;
+    material.doubleSided = doubleSided;
+    if (!baseColor.is_none()) material.baseColor = triple(baseColor, "base_color");
+    if (!texture.is_none()) {
+        const py::array t = py::array::ensure(texture);
+        if (!t || t.ndim() != 3 || (t.shape(2) != 4 && t.shape(2) != 3)) throw streak::Error("texture must be an array of shape (H, W, 4) or (H, W, 3)");
+        sk::Texture tex;
+        tex.height = int(t.shape(0)), tex.width = int(t.shape(1));
+        const bool isBytes = t.dtype().is(py::dtype::of<std::uint8_t>());
+        const py::ssize_t texels = t.shape(0) * t.shape(1), channels = t.shape(2);
+        if (isBytes) {
+            const auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(t);
+            for (py::ssize_t i = 0; i < texels; ++i)
+                for (int c = 0; c < 4; ++c) tex.rgba8.push_back(c < channels ? b.data()[i * channels + c] : 255);
+        } else {
+            const FloatArray f = FloatArray::ensure(t);
+            for (py::ssize_t i = 0; i < texels; ++i)
+                for (int c = 0; c < 4; ++c) tex.rgbaFloat.push_back(c < channels ? f.data()[i * channels + c] : 1.0f);
+        }
+        textures.push_back(std::move(tex));
+        material.texture = 0;
+    }
+    return sk::Scene::fromArrays({mesh}, {material}, cameraOf(camera), textures,
+                                 background.is_none() ? std::array<float, 3>{0, 0, 0} : triple(background, "background"));
+}
+
+sk::Scene sceneOf(const py::handle& scene) {
+    if (py::isinstance<py::str>(scene)) return sk::Scene::load(scene.cast<std::string>());
+    return scene.cast<sk::Scene>();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(streak, m) {
+    m.doc() = "streak: analytic motion blur of moving and deforming triangle meshes (linear light, shutter t in [0, 1])";
+    py::register_exception<streak::Error>(m, "Error", PyExc_ValueError);
+
+    py::class_<sk::Scene>(m, "Scene", "A validated scene: streak.Scene.load(spec) or streak.Scene.from_arrays(...)")
+        .def_static(
+            "load",
+            [](const std::string& spec, double frame, double shutter, double fps, const std::string& animation, const std::string& position,
+               int width, int height) {
+                sk::LoadOptions o;
+                o.frame = frame, o.shutterFrames = shutter, o.fps = fps, o.animation = animation, o.shutterPosition = position;
+                o.width = width, o.height = height;
+                return sk::Scene::load(spec, o);
+            },
+            py::arg("spec"), py::arg("frame") = 0.0, py::arg("shutter") = 0.5, py::arg("fps") = 24.0, py::arg("animation") = "",
+            py::arg("shutter_position") = "start", py::arg("width") = 1024, py::arg("height") = 768,
+            "builtin:NAME[?k=v&...] or a .gltf/.glb file; glTF time in frames as on the command line")
+        .def_static("from_arrays", &fromArrays, py::arg("keys"), py::arg("indices"), py::arg("uvs") = py::none(),
+                    py::arg("normals") = py::none(), py::arg("texture") = py::none(), py::arg("camera") = py::dict(),
+                    py::arg("base_color") = py::none(), py::arg("double_sided") = true, py::arg("background") = py::none(),
+                    "one mesh: keys (K, V, 3) key poses over the shutter, indices (T, 3), uvs (V, 2), normals (K, V, 3), "
+                    "texture (H, W, 4|3) uint8 sRGB or float linear; camera {position, target, up, fov, znear, position_end, target_end}")
+        .def("with_shutter", [](const sk::Scene& s, const std::string& curve, float rolling) { return s.withShutter({curve, rolling}); },
+             py::arg("curve") = "box", py::arg("rolling") = 1.0f)
+        .def_property_readonly("num_triangles", &sk::Scene::numTriangles)
+        .def_property_readonly("skipped_triangles", &sk::Scene::skippedTriangles);
+
+    m.def(
+        "render",
+        [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
+           const std::map<std::string, std::string>& options, bool stats) -> py::object {
+            sk::RenderSettings s;
+            s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
+            const sk::Scene sc = sceneOf(scene);
+            sk::RenderResult result;
+            {
+                py::gil_scoped_release release;
+                result = sk::render(sc, s);
+            }
+            if (stats) return py::make_tuple(arrayOf(result.image), py::module_::import("json").attr("loads")(result.statsJson));
+            return arrayOf(result.image);
+        },
+        py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
+        py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
+        "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict))");
+    m.def("methods", [] {
+        py::list out;
+        for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));
+        return out;
+    }, "[(name, description)] of every method");
+    m.def("compare", [](const py::handle& a, const py::handle& b) {
+        const sk::Comparison c = sk::compare(imageOf(a, "a"), imageOf(b, "b"));
+        py::dict out;
+        out["psnr"] = c.psnr, out["ssim"] = c.ssim;
+        return out;
+    }, py::arg("a"), py::arg("b"), "{'psnr': dB, 'ssim': ...} of two H x W x 3 images in display space");
+    m.def("write_image", [](const py::handle& image, const std::string& path) { sk::writeImage(imageOf(image, "image"), path); },
+          py::arg("image"), py::arg("path"), ".png (sRGB 8-bit) or .exr (linear float)");
+    m.def("read_image", [](const std::string& path) { return arrayOf(sk::readImage(path)); }, py::arg("path"));
+}

@@ -1,0 +1,92 @@
+"""The Python module as a user calls it: a built-in scene against the CLI's EXR, a scene from
+numpy arrays against its closed form, and bad arrays raising one clear streak.Error."""
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import streak
+
+CLI = os.environ.get("STREAK_CLI", "build/streak")
+
+
+def sweeping_quad():
+    """A white quad at depth 3 (90-degree camera, 16x4 image) whose right edge sweeps raster x
+    from 2 to 14 over the shutter: pixel centre xc is covered for (14 - xc) / 12 of it."""
+    depth, aspect = 3.0, 4.0
+
+    def at(rx, ry):
+        return [(2 * rx / 16 - 1) * depth * aspect, (1 - 2 * ry / 4) * depth, -depth]
+
+    keys = np.array([[at(-20 + dx, -1), at(-20 + dx, 5), at(2 + dx, 5), at(2 + dx, -1)] for dx in (0, 12)], dtype=np.float32)
+    indices = np.array([[0, 1, 2], [0, 2, 3]])
+    camera = {"position": [0, 0, 0], "target": [0, 0, -1], "fov": 90}
+    return keys, indices, camera
+
+
+class RenderTest(unittest.TestCase):
+    def test_builtin_equals_the_cli_exr(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cli.exr")
+            subprocess.run([CLI, "render", "builtin:spin", "-m", "analytic", "--width", "64", "--height", "48", "-o", path], check=True)
+            image = streak.render("builtin:spin", method="analytic", width=64, height=48)
+            self.assertEqual(image.shape, (48, 64, 3))
+            self.assertEqual(image.dtype, np.float32)
+            self.assertTrue(np.array_equal(image, streak.read_image(path)))
+
+    def test_arrays_give_the_closed_form_coverage(self):
+        keys, indices, camera = sweeping_quad()
+        scene = streak.Scene.from_arrays(keys=keys, indices=indices, camera=camera)
+        self.assertEqual(scene.num_triangles, 2)
+        image, stats = streak.render(scene, method="analytic", width=16, height=4, unlit=True, stats=True)
+        expected = np.clip((14.0 - (np.arange(16) + 0.5)) / 12.0, 0.0, 1.0)
+        np.testing.assert_allclose(image[:, :, 0], np.tile(expected, (4, 1)), atol=2e-4)
+        self.assertEqual(stats["counters"]["triangles"], 2)
+        # Textured with a uniform grey: the same ramp times the grey (linear light).
+        grey = np.full((2, 2, 4), 0.5, dtype=np.float32)
+        uvs = np.array([[0, 0], [0, 1], [1, 1], [1, 0]], dtype=np.float32)
+        textured = streak.Scene.from_arrays(keys=keys, indices=indices, uvs=uvs, texture=grey, camera=camera)
+        np.testing.assert_allclose(streak.render(textured, method="analytic", width=16, height=4, unlit=True)[1, :, 0], 0.5 * expected, atol=2e-4)
+        # Under a triangle shutter curve: 1 - C((xc - 2) / 12), C(x) = 2 x^2 up to 1/2.
+        curved = streak.render(scene.with_shutter("triangle"), method="analytic", width=16, height=4, unlit=True)
+        self.assertAlmostEqual(float(curved[0, 3, 0]), 1 - 2 * (1.5 / 12) ** 2, delta=2e-4)
+
+    def test_bad_arrays_raise_one_clear_error(self):
+        keys, indices, camera = sweeping_quad()
+        nan = keys.copy()
+        nan[1, 2, 0] = np.nan
+        cases = {
+            "keys must be a float array of shape (K, V, 3)": dict(keys=keys[:, :, :2], indices=indices),
+            "finite": dict(keys=nan, indices=indices),
+            "index 9 is out of range": dict(keys=keys, indices=np.array([[0, 1, 9]])),
+            "index -1 is out of range": dict(keys=keys, indices=np.array([[0, -1, 2]])),
+            "indices must be an integer array of shape (T, 3)": dict(keys=keys, indices=np.array([0, 1, 2])),
+            "needs at least 2 key poses": dict(keys=keys[:1], indices=indices),
+            "uvs must have one row per vertex": dict(keys=keys, indices=indices, uvs=np.zeros((3, 2))),
+            "texture must be an array of shape": dict(keys=keys, indices=indices, texture=np.zeros((2, 2))),
+        }
+        for message, kwargs in cases.items():
+            with self.subTest(message):
+                with self.assertRaises(streak.Error) as caught:
+                    streak.Scene.from_arrays(camera=camera, **kwargs)
+                self.assertIn(message, str(caught.exception))
+                self.assertNotIn("\n", str(caught.exception))
+        with self.assertRaises(streak.Error):
+            streak.render("builtin:nosuch")
+        with self.assertRaises(streak.Error):
+            streak.render("builtin:spin", method="nosuch")
+
+    def test_methods_and_compare(self):
+        names = [name for name, _ in streak.methods()]
+        self.assertIn("analytic", names)
+        self.assertIn("accumulation", names)
+        a = streak.render("builtin:crossing", method="analytic", width=32, height=24)
+        b = streak.render("builtin:crossing", method="accumulation", width=32, height=24, options={"samples": "256"})
+        self.assertEqual(streak.compare(a, a)["psnr"], float("inf"))
+        self.assertGreater(streak.compare(a, b)["psnr"], 40.0)
+
+
+if __name__ == "__main__":
+    unittest.main()
