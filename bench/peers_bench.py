@@ -30,11 +30,22 @@ from benchlib import Streak, machine  # noqa: E402
 
 BUILTIN = ["cubes", "rotating-cube", "spin", "clothball", "sphere", "crossing", "twist", "fence", "pan", "translucent"]
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
-GLTF = [  # name, file, flags: where the motion is large but not wild (bench/ground_truth_bench.py)
+GLTF = [  # name, file, flags: the frames and shutters of bench/ground_truth_bench.py (every shared model)
     ("CesiumMan", "CesiumMan/glTF-Binary/CesiumMan.glb", ["--frame", "12", "--shutter", "2"]),
     ("Fox", "Fox/glTF-Binary/Fox.glb", ["--frame", "10", "--shutter", "1", "--animation", "Run"]),
     ("RiggedFigure", "RiggedFigure/glTF-Binary/RiggedFigure.glb", ["--frame", "10", "--shutter", "2"]),
     ("BoxAnimated", "BoxAnimated/glTF-Binary/BoxAnimated.glb", ["--frame", "12", "--shutter", "3"]),
+    ("AnimatedTriangle", "AnimatedTriangle/glTF/AnimatedTriangle.gltf", ["--frame", "3", "--shutter", "2"]),
+    ("AnimatedCube", "AnimatedCube/glTF/AnimatedCube.gltf", ["--frame", "12", "--shutter", "2"]),
+    ("InterpolationTest", "InterpolationTest/glTF-Binary/InterpolationTest.glb",
+     ["--frame", "12", "--shutter", "3", "--animation", "CubicSpline Rotation"]),
+    ("SimpleSkin", "SimpleSkin/glTF/SimpleSkin.gltf", ["--frame", "12", "--shutter", "6"]),
+    ("RiggedSimple", "RiggedSimple/glTF-Binary/RiggedSimple.glb", ["--frame", "20", "--shutter", "3"]),
+    ("SimpleMorph", "SimpleMorph/glTF/SimpleMorph.gltf", ["--frame", "24", "--shutter", "12"]),
+    ("AnimatedMorphCube", "AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb", ["--frame", "30", "--shutter", "6"]),
+    ("MorphStressTest", "MorphStressTest/glTF-Binary/MorphStressTest.glb", ["--frame", "24", "--shutter", "6", "--animation", "TheWave"]),
+    ("ToyCar", "ToyCar/glTF/ToyCar.gltf", []),  # static: its first glTF camera
+    ("MetalRoughSpheresNoTextures", "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", []),  # static
 ]
 PEERS = ["accumulation", "stochastic", "embree", "post-filter"]
 SETTINGS = {
