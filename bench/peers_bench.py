@@ -10,11 +10,13 @@ least time that reaches 40 dB and 50 dB, and its ratio to the fastest peer (accu
 stochastic, embree, post-filter) at that quality. With --plot DIR, one Pareto plot per scene
 (DIR/pareto_<scene>_<size>.png, log time on x).
 
+Section converge: embree at S = 1024 against accumulation at S = 1024 on every shared model.
+
 Section failures: post-filter's known failure modes beside accumulation 3000 and analytic, as an
 image sheet (DIR/post_filter_failures.png): thin bars over a wall moving differently (fence),
 translucent panes (translucent), a fast spin (spin), and a moving camera (pan).
 
-usage: bench/peers_bench.py [--streak build/streak] [--sections builtin,gltf,failures] [--size 320x240] [--plot docs] [--repeats 1]
+usage: bench/peers_bench.py [--streak build/streak] [--sections builtin,gltf,failures,converge] [--size 320x240] [--plot docs] [--repeats 1]
 """
 import argparse
 import json
@@ -159,6 +161,23 @@ def failures(streak, size, plot_dir):
         print(f"(sheet: {os.path.join(plot_dir, 'post_filter_failures.png')})\n")
 
 
+def converge(streak, size):
+    """embree converged: S = 1024 ray times per sample against accumulation's 1024 shutter times,
+    on every shared model (the issue's 33 dB target; tests check the built-in scenes)."""
+    print(f"### embree S = 1024 against accumulation S = 1024 on the shared models ({size}, phong)\n")
+    print("| model | triangles | PSNR (dB) | embree ms | accumulation ms |")
+    print("|---|---:|---:|---:|---:|")
+    a, b = os.path.join(streak.tmp, "conv-a.exr"), os.path.join(streak.tmp, "conv-b.exr")
+    for name, path, flags in GLTF:
+        spec = os.path.join(SCENES, path)
+        if not os.path.exists(spec):
+            continue
+        ms_e, stats = streak.render(spec, "embree", a, size=size, args=[*flags, "--samples", "1024"], repeats=1)
+        ms_a, _ = streak.render(spec, "accumulation", b, size=size, args=[*flags, "--samples", "1024"], repeats=1)
+        print(f"| {name} | {int(stats['counters']['triangles'])} | {streak.psnr(a, b):.1f} | {ms_e:.0f} | {ms_a:.0f} |", flush=True)
+    print()
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--streak", default="build/streak")
@@ -185,6 +204,8 @@ def main():
             report(name, points(streak, spec, flags, args.size, ref), args.plot, args.size)
         if "failures" in args.sections:
             failures(streak, args.size, args.plot)
+        if "converge" in args.sections:
+            converge(streak, args.size)
 
 
 if __name__ == "__main__":
