@@ -13,12 +13,18 @@ InstantSchedule::InstantSchedule(const Shutter& shutter, int samples, int height
         return;
     }
     const int n = int(std::ceil(double(samples) / double(shutter.rollingDuration)));
-    for (int k = 0; k < n; ++k) m_times.push_back((float(k) + 0.5f) / float(n));
+    // Row y is open over [s, s + D], s = (1 - D) y / (H - 1): cell [c0, c1] meets the rows with
+    // c0 - D < s < c1 (a curve that is closed at a window's end may leave them a weight of 0).
+    const double d = shutter.rollingDuration, rowStep = height > 1 ? (1.0 - d) / double(height - 1) : 0.0;
     for (int k = 0; k < n; ++k) {
-        // Rows open at (1 - D) y / (H - 1): those whose window [start, start + D] meets the cell.
-        int first = height, last = -1;
-        for (int y = 0; y < height; ++y)
-            if (weight(k, y) > 0.0f) first = std::min(first, y), last = std::max(last, y);
+        m_times.push_back((float(k) + 0.5f) / float(n));
+        const double c0 = double(k) / n, c1 = double(k + 1) / n;
+        if (rowStep <= 0.0) {
+            m_rows.emplace_back(0, height - 1);
+            continue;
+        }
+        const int first = std::max(0, int(std::floor((c0 - d) / rowStep)));
+        const int last = std::min(height - 1, int(std::ceil(c1 / rowStep)));
         m_rows.emplace_back(first, last);
     }
 }

@@ -51,39 +51,35 @@ ShutterWindow rowWindow(int row) {
     return ShutterWindow(h > 1 ? (1.0 - d) * float(row) / float(h - 1) : 0.0, d, false);
 }
 
+// The curve segment [i - 1, i] that holds v in column c of u_shutterCurve (0: x, 2: exposure).
+int curveSegment(float v, int c) {
+    int n = int(u_shutter.y);
+    for (int i = 1; i < n - 1; ++i)
+        if (v < u_shutterCurve[i][c]) return i;
+    return n - 1;
+}
+
 // The curve's exposure up to x in [0, 1] (closed form: quadratic within a segment).
 float curveExposure(float x) {
     if (!(x > 0.0)) return 0.0;
     if (x >= 1.0) return 1.0;
     if (u_shutter.w != 0.0) return x;
-    int n = int(u_shutter.y);
-    for (int i = 1; i < n; ++i) {
-        vec4 b = u_shutterCurve[i];
-        if (x < b.x || i == n - 1) {
-            vec4 a = u_shutterCurve[i - 1];
-            float h = x - a.x, slope = (b.y - a.y) / (b.x - a.x);
-            return min(1.0, a.z + h * (a.y + 0.5 * slope * h));
-        }
-    }
-    return 1.0;
+    int i = curveSegment(x, 0);
+    vec4 a = u_shutterCurve[i - 1], b = u_shutterCurve[i];
+    float h = x - a.x, slope = (b.y - a.y) / (b.x - a.x);
+    return min(1.0, a.z + h * (a.y + 0.5 * slope * h));
 }
 
 // The x whose exposure is u.
 float curvePosition(float u) {
     u = clamp(u, 0.0, 1.0);
     if (u_shutter.w != 0.0) return u;
-    int n = int(u_shutter.y);
-    for (int i = 1; i < n; ++i) {
-        vec4 b = u_shutterCurve[i];
-        if (u < b.z || i == n - 1) {
-            vec4 a = u_shutterCurve[i - 1];
-            float slope = (b.y - a.y) / (b.x - a.x), rest = u - a.z, qa = 0.5 * slope, qb = a.y;
-            float h = !(rest > 0.0) ? 0.0
-                    : abs(qa) < 1e-12 ? (qb > 0.0 ? rest / qb : 0.0) : 2.0 * rest / (qb + sqrt(max(0.0, qb * qb + 4.0 * qa * rest)));
-            return clamp(a.x + h, a.x, b.x);
-        }
-    }
-    return 1.0;
+    int i = curveSegment(u, 2);
+    vec4 a = u_shutterCurve[i - 1], b = u_shutterCurve[i];
+    float slope = (b.y - a.y) / (b.x - a.x), rest = u - a.z, qa = 0.5 * slope, qb = a.y;
+    float h = !(rest > 0.0) ? 0.0
+            : abs(qa) < 1e-12 ? (qb > 0.0 ? rest / qb : 0.0) : 2.0 * rest / (qb + sqrt(max(0.0, qb * qb + 4.0 * qa * rest)));
+    return clamp(a.x + h, a.x, b.x);
 }
 
 float exposureAt(ShutterWindow w, float t) { return w.isIdentity ? clamp(t, 0.0, 1.0) : curveExposure((t - w.start) / w.length); }
