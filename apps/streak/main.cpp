@@ -1,33 +1,24 @@
-// streak: the command line. The only place where an Error becomes one stderr line and exit 2.
+// streak: the command line, a client of the public API (include/streak/) only. The only place
+// where an Error becomes one stderr line and exit 2.
 
-#include "image/image_io.h"
-#include "image/metrics.h"
-#include "methods/registry.h"
-#include "raster/clip.h"
-#include "scene/blur_shell.h"
-#include "scene/builtin_scenes.h"
-#include "scene/camera.h"
-#include "scene/gltf_writer.h"
-#include "scene/scene_loader.h"
-#include "scene/shutter.h"
-#include "util/error.h"
+#include <streak/streak.h>
 
 #include <CLI/CLI.hpp>
-#include <glm/trigonometric.hpp>
-#include <tbb/global_control.h>
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
-#include <memory>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -35,16 +26,18 @@
 namespace streak {
 namespace {
 
+namespace sk = streak::api;
+
 constexpr int kExitBadInput = 2;
 
 // A one-line progress bar on stderr, drawn only when stderr is a terminal.
-class TerminalProgress final : public ProgressReporter {
+class TerminalProgress {
 public:
     TerminalProgress() : m_enabled(isatty(STDERR_FILENO) != 0) {}
-    ~TerminalProgress() override {
+    ~TerminalProgress() {
         if (m_drawn) std::fprintf(stderr, "\r%60s\r", "");
     }
-    void update(double fraction) override {
+    void update(double fraction) {
         if (!m_enabled) return;
         const auto now = std::chrono::steady_clock::now();
         if (fraction < 1.0 && m_drawn && now - m_last < std::chrono::milliseconds(100)) return;
@@ -64,7 +57,7 @@ private:
 
 // Throws Error unless `path` could be created: a known extension in an existing, writable folder.
 void checkWritable(const std::string& path, bool mustBeImage) {
-    if (mustBeImage) imageFormatFromPath(path);
+    if (mustBeImage) sk::checkImagePath(path);
     const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
     std::error_code ec;
     if (!std::filesystem::is_directory(parent, ec)) throw Error("cannot write " + path + ": folder " + parent.string() + " does not exist");
@@ -91,20 +84,20 @@ void writeTextFile(const std::string& path, const std::string& text) {
 }
 
 // "x,y,z" for the camera flags; negative values need the --flag=-1,2,3 form.
-glm::vec3 parseVec3(const std::string& text, const std::string& flag) {
-    glm::vec3 v;
+std::array<float, 3> parseVec3(const std::string& text, const std::string& flag) {
+    std::array<float, 3> v;
     char extra = 0;
-    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v.x, &v.y, &v.z, &extra) != 3 || !std::isfinite(v.x) || !std::isfinite(v.y) ||
-        !std::isfinite(v.z))
+    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v[0], &v[1], &v[2], &extra) != 3 ||
+        !std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); }))
         throw Error(flag + " must be three numbers x,y,z (write --flag=-1,2,3 for negative ones), got '" + text + "'");
     return v;
 }
 
-glm::vec3 parseColor(const std::string& text) {
-    glm::vec3 c;
+std::array<float, 3> parseColor(const std::string& text) {
+    std::array<float, 3> c;
     char extra = 0;
-    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &c.x, &c.y, &c.z, &extra) != 3 || !std::isfinite(c.x) || !std::isfinite(c.y) ||
-        !std::isfinite(c.z) || c.x < 0 || c.y < 0 || c.z < 0)
+    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &c[0], &c[1], &c[2], &extra) != 3 ||
+        !std::all_of(c.begin(), c.end(), [](float x) { return std::isfinite(x) && x >= 0.0f; }))
         throw Error("--background must be three non-negative numbers r,g,b, got '" + text + "'");
     return c;
 }
@@ -156,10 +149,10 @@ struct RenderArgs {
     std::optional<float> fov;
 };
 
-// The glTF options from the flags; Error for a flag given with a built-in scene or a camera
+// The load options from the flags; Error for a glTF flag given with a built-in scene or a camera
 // flag without the ones it needs.
-GltfOptions gltfOptions(const RenderArgs& args) {
-    const bool isGltf = isGltfSpec(args.scene);
+sk::LoadOptions loadOptions(const RenderArgs& args) {
+    const bool isGltf = sk::isGltfFile(args.scene);
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
         {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
@@ -169,9 +162,9 @@ GltfOptions gltfOptions(const RenderArgs& args) {
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
     for (const auto& [flag, given] : flags)
         if (given && !isGltf) throw Error(std::string(flag) + " applies to glTF scenes (.gltf, .glb) only");
-    GltfOptions options;
+    sk::LoadOptions options;
     options.frame = args.frame.value_or(options.frame);
-    options.shutter = args.shutter.value_or(options.shutter);
+    options.shutterFrames = args.shutter.value_or(options.shutterFrames);
     options.fps = args.fps.value_or(options.fps);
     options.animation = args.animation.value_or("");
     options.motionKeys = args.motionKeys.value_or(options.motionKeys);
@@ -179,19 +172,19 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     options.motionFitSamples = args.motionFitSamples.value_or(options.motionFitSamples);
     if (args.motionFitSamples && *args.motionFitSamples < 0) throw Error("--motion-fit-samples must be 0 or more, got " + std::to_string(*args.motionFitSamples));
     if (args.motionCurve) {
-        if (*args.motionCurve == "bezier") options.motionCurve = MotionInterpolation::Bezier;
-        else if (*args.motionCurve != "linear") throw Error("--motion-curve must be linear or bezier, got '" + *args.motionCurve + "'");
+        if (*args.motionCurve != "bezier" && *args.motionCurve != "linear") throw Error("--motion-curve must be linear or bezier, got '" + *args.motionCurve + "'");
+        options.motionCurve = *args.motionCurve;
     }
     options.keyTolerancePixels = args.keyTolerance.value_or(options.keyTolerancePixels);
-    options.imageHeight = args.height;
+    options.width = args.width;
+    options.height = args.height;
     options.camera = args.camera;
-    options.aspect = float(args.width) / float(args.height);
     const bool hasLookAtFlag = args.cameraUp || args.cameraPosEnd || args.cameraTargetEnd || args.fov;
     if (args.cameraPos.has_value() != args.cameraTarget.has_value() || (hasLookAtFlag && !args.cameraPos))
         throw Error("an explicit camera needs both --camera-pos and --camera-target");
     if (args.cameraPos) {
         if (args.camera) throw Error("--camera and --camera-pos cannot both be given");
-        GltfLookAt look;
+        sk::LookAt look;
         look.position = parseVec3(*args.cameraPos, "--camera-pos");
         look.target = parseVec3(*args.cameraTarget, "--camera-target");
         if (args.cameraUp) look.up = parseVec3(*args.cameraUp, "--camera-up");
@@ -203,58 +196,20 @@ GltfOptions gltfOptions(const RenderArgs& args) {
     return options;
 }
 
-// "x,y,z,..." with every digit a float holds, so another renderer can rebuild the camera.
-template <typename... T>
-std::string numberList(T... values) {
-    std::string text;
-    for (const double value : {double(values)...}) {
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%.9g", value);
-        text += (text.empty() ? "" : ",") + std::string(buffer);
-    }
-    return text;
-}
-
-// Loads the trail a method shows (blur-shell) instead of the shutter: a glTF scene over
-// [T - length, T], T = --frame / --fps, with one key pose per update time. The animation holds
-// its first pose before it starts, so a trail reaching back past 0 s moves only from there
-// (trail_before_start_seconds). Built-in scenes have no clock: their shutter is the trail.
-void applyTrail(const RenderArgs& args, const AnimationTrail& trail, const std::string& who, GltfOptions& gltf, RenderStats& stats) {
+// A trail method (blur-shell, shell) loads the trail instead of the shutter: Error for the flags
+// that place a shutter.
+void checkTrailFlags(const RenderArgs& args, const std::string& who) {
     for (const auto& [flag, given] : {std::pair{"--shutter", args.shutter.has_value()}, std::pair{"--motion-keys", args.motionKeys.has_value()},
                                       std::pair{"--motion-curve", args.motionCurve.has_value()}})
         if (given) throw Error(std::string(flag) + " does not apply to " + who + ": its trail is length seconds with one key per update");
-    if (!isGltfSpec(args.scene)) {
-        stats.setInfo("trail", "the built-in scene's shutter");
-        return;
-    }
-    const double end = gltf.frame / gltf.fps;
-    gltf.frame -= trail.lengthSeconds * gltf.fps;
-    gltf.shutter = trail.lengthSeconds * gltf.fps;
-    gltf.motionKeys = trail.keys;
-    stats.setInfo("trail", numberList(end - trail.lengthSeconds, end) + " s");
-    stats.setCounter("trail_before_start_seconds", std::max(0.0, trail.lengthSeconds - end));
-}
-
-// The camera the scene was rendered through (glTF camera, explicit or framing; built-in), in the
-// scene's world (glTF: +y up): each pose's position and worldFromCamera rotation (w,x,y,z; the
-// camera looks down its -z with +y up), the vertical field of view and the near plane.
-void reportCamera(const Camera& camera, RenderStats& stats) {
-    for (const auto& [name, pose] : {std::pair{"open", &camera.open}, std::pair{"close", &camera.close}}) {
-        const glm::vec3& p = pose->position;
-        const glm::quat& q = pose->worldFromCamera;
-        stats.setInfo(std::string("camera_") + name + "_position", numberList(p.x, p.y, p.z));
-        stats.setInfo(std::string("camera_") + name + "_rotation_wxyz", numberList(q.w, q.x, q.y, q.z));
-    }
-    stats.setInfo("camera_vertical_fov_deg", numberList(glm::degrees(camera.verticalFov)));
-    stats.setInfo("camera_znear", numberList(camera.zNear));
 }
 
 // The --option KEY=VALUE flags, into `options`.
-void addOptionFlags(const std::vector<std::string>& flags, OptionMap& options) {
+void addOptionFlags(const std::vector<std::string>& flags, std::map<std::string, std::string>& options) {
     for (const std::string& option : flags) {
         const std::size_t equals = option.find('=');
         if (equals == std::string::npos || equals == 0) throw Error("--option must be KEY=VALUE, got '" + option + "'");
-        options.set(option.substr(0, equals), option.substr(equals + 1));
+        options[option.substr(0, equals)] = option.substr(equals + 1);
     }
 }
 
@@ -270,13 +225,13 @@ struct FrameList {
     bool isSequence = false;
 };
 
-FrameList frameList(const RenderArgs& args, const GltfOptions& gltf) {
+FrameList frameList(const RenderArgs& args) {
     FrameList list;
     if (!args.sequence) {
-        list.frames.push_back(gltf.frame);
+        list.frames.push_back(args.frame.value_or(0.0));
         return list;
     }
-    if (!isGltfSpec(args.scene)) throw Error("--frames A:B applies to glTF scenes (.gltf, .glb) only: a built-in scene has no clock");
+    if (!sk::isGltfFile(args.scene)) throw Error("--frames A:B applies to glTF scenes (.gltf, .glb) only: a built-in scene has no clock");
     if (args.frame) throw Error("--frame and --frames A:B cannot both be given");
     long first = 0, last = 0, step = 1;
     char extra = 0;
@@ -319,68 +274,48 @@ std::string framePath(const std::string& pattern, double frame, bool isSequence,
     return out;
 }
 
-// The shutter flags that shape the exposure (curve, rolling), honoured by every method.
-Shutter shutterOf(const RenderArgs& args) {
-    Shutter shutter;
-    if (args.shutterCurve) shutter.curve = ShutterCurve::parse(*args.shutterCurve);
-    if (args.rollingShutter) shutter.rollingDuration = checkRollingDuration(*args.rollingShutter);
-    return shutter;
-}
-
-void reportShutter(const Shutter& shutter, ShutterPosition position, RenderStats& stats) {
-    stats.setInfo("shutter_curve", shutter.curve.name());
-    stats.setInfo("shutter_position", shutterPositionName(position));
-    stats.setCounter("rolling_shutter", shutter.rollingDuration);
-}
-
-// Maps one frame's progress into the sequence's single bar.
-class FrameProgress final : public ProgressReporter {
-public:
-    FrameProgress(ProgressReporter& whole, double offset, double scale) : m_whole(whole), m_offset(offset), m_scale(scale) {}
-    void update(double fraction) override { m_whole.update(m_offset + m_scale * fraction); }
-
-private:
-    ProgressReporter& m_whole;
-    double m_offset, m_scale;
-};
-
 int runRender(const RenderArgs& args) {
     using Clock = std::chrono::steady_clock;
-    if (args.width <= 0 || args.height <= 0 || args.width > raster::kMaxImageSize || args.height > raster::kMaxImageSize)
-        throw Error("--width and --height must be in [1, " + std::to_string(raster::kMaxImageSize) + "], got " +
+    if (args.width <= 0 || args.height <= 0 || args.width > sk::kMaxImageSize || args.height > sk::kMaxImageSize)
+        throw Error("--width and --height must be in [1, " + std::to_string(sk::kMaxImageSize) + "], got " +
                     std::to_string(args.width) + "x" + std::to_string(args.height));
     if (args.aa < 1 || args.aa > 16) throw Error("--aa must be in [1, 16], got " + std::to_string(args.aa));
     if (args.repeat < 1) throw Error("--repeat must be 1 or more, got " + std::to_string(args.repeat));
     if (args.threads < 0) throw Error("--threads must be 0 (all cores) or more, got " + std::to_string(args.threads));
     if (args.samples && *args.samples <= 0) throw Error("--samples must be positive, got " + std::to_string(*args.samples));
-    RenderSettings settings;
+    if (args.shading != "phong" && args.shading != "unlit") throw Error("--shading must be phong or unlit, got '" + args.shading + "'");
+    sk::RenderSettings settings;
+    settings.method = args.method;
     settings.width = args.width;
     settings.height = args.height;
     settings.aa = args.aa;
-    settings.isGridPattern = args.sampleGrid;
+    settings.sampleGrid = args.sampleGrid;
+    settings.unlit = args.shading == "unlit";
     settings.seed = args.seed;
-    if (args.shading == "phong") settings.shading = ShadingMode::Phong;
-    else if (args.shading == "unlit") settings.shading = ShadingMode::Unlit;
-    else throw Error("--shading must be phong or unlit, got '" + args.shading + "'");
-
-    OptionMap methodOptions;
+    settings.threads = args.threads;
     // Method-specific flags become the method's options; a method rejects those it does not take.
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
         {"mask-bits", &args.maskBits}, {"texture-samples", &args.textureSamples}, {"sort", &args.sort},
         {"curve-segments", &args.curveSegments}, {"taps-per-texel", &args.tapsPerTexel}, {"gpu-memory", &args.gpuMemory}};
     for (const auto& [key, value] : methodFlags)
-        if (value->has_value()) methodOptions.set(key, std::to_string(**value));
-    addOptionFlags(args.options, methodOptions);
-    std::unique_ptr<Renderer> renderer = createRenderer(args.method, methodOptions);
-    const GltfOptions gltf = gltfOptions(args);
-    const Shutter shutter = shutterOf(args);
-    const ShutterPosition position = parseShutterPosition(args.shutterPosition.value_or("start"));
-    if (args.shutterPosition && !isGltfSpec(args.scene)) throw Error("--shutter-position applies to glTF scenes (.gltf, .glb) only");
-    const std::optional<AnimationTrail> trail = renderer->animationTrail();
-    if (trail && (args.shutterPosition || args.shutterCurve || args.rollingShutter))
-        throw Error("the shutter flags do not apply to method " + args.method + ": it draws a trail, not a shutter average");
-    const FrameList list = frameList(args, gltf);
+        if (value->has_value()) settings.options[key] = std::to_string(**value);
+    addOptionFlags(args.options, settings.options);
+    sk::Renderer renderer(settings);
+
+    sk::LoadOptions load = loadOptions(args);
+    if (args.shutterCurve) load.shutter.curve = *args.shutterCurve;
+    if (args.rollingShutter) load.shutter.rollingDuration = float(*args.rollingShutter);
+    if (args.shutterPosition) load.shutterPosition = *args.shutterPosition;
+    if (args.background) load.background = parseColor(*args.background);
+    if (args.shutterPosition && !sk::isGltfFile(args.scene)) throw Error("--shutter-position applies to glTF scenes (.gltf, .glb) only");
+    load.trail = renderer.trail();
+    if (load.trail) {
+        if (args.shutterPosition || args.shutterCurve || args.rollingShutter)
+            throw Error("the shutter flags do not apply to method " + args.method + ": it draws a trail, not a shutter average");
+        if (sk::isGltfFile(args.scene)) checkTrailFlags(args, "method " + args.method);
+    }
+    const FrameList list = frameList(args);
     std::vector<std::string> outputs, statsPaths;
     const bool isStatsPerFrame = args.stats.find('%') != std::string::npos;
     for (const double frame : list.frames) {
@@ -393,67 +328,34 @@ int runRender(const RenderArgs& args) {
     }
     if (!args.stats.empty() && !isStatsPerFrame) checkWritable(args.stats, false);
 
-    std::optional<tbb::global_control> threadLimit;
-    if (args.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
-
     TerminalProgress progress;
     std::vector<std::string> frameJson;
     for (std::size_t f = 0; f < list.frames.size(); ++f) {
         const auto start = Clock::now();
-        RenderStats stats;
-        GltfOptions frameGltf = gltf;
-        frameGltf.frame = list.frames[f];
-        if (trail) applyTrail(args, *trail, "method " + args.method, frameGltf, stats);
-        else frameGltf.frame = shutterOpenFrame(position, frameGltf.frame, frameGltf.shutter);
-
-        Scene scene;
-        SceneCleanup cleanup;
-        {
-            PhaseTimer timer(stats, "load");
-            scene = loadScene(args.scene, frameGltf, &stats);
-            if (args.background) scene.background = parseColor(*args.background);
-            scene.shutter = shutter;
-            cleanup = validateScene(scene);
-        }
-        stats.setInfo("scene", args.scene);
-        stats.setInfo("method", args.method);
-        stats.setInfo("shading", args.shading);
-        if (list.isSequence) stats.setCounter("frame", list.frames[f]);
-        stats.setCounter("width", args.width);
-        stats.setCounter("height", args.height);
-        stats.setCounter("aa", args.aa);
-        stats.setCounter("sample_grid", args.sampleGrid ? 1 : 0);
-        stats.setCounter("triangles", double(scene.numTriangles()));
-        stats.setCounter("skipped_triangles", double(cleanup.numSkipped()));
-        stats.setCounter("skipped_nonfinite", double(cleanup.numNonFinite));
-        stats.setCounter("skipped_degenerate", double(cleanup.numDegenerate));
-        reportShutter(scene.shutter, position, stats);
-        reportCamera(scene.camera, stats);
+        load.frame = list.frames[f];
+        const sk::Scene scene = sk::Scene::load(args.scene, load);
 
         // Renders before the last warm up what a renderer keeps between renders (GL programs and
         // the driver's compiled code, caches); the image and stats are the last's.
-        stats.setCounter("repeat", args.repeat);
-        Image image;
+        sk::RenderResult result;
         for (int r = 0; r < args.repeat; ++r) {
-            const bool isLast = r + 1 == args.repeat;
-            RenderStats warmUp;
-            const double share = 1.0 / (double(list.frames.size()) * args.repeat);
-            FrameProgress frameProgress(progress, (double(f) * args.repeat + r) * share, share);
-            RenderContext context{isLast ? stats : warmUp, &frameProgress};
-            PhaseTimer timer(context.stats, "render");
-            image = renderer->render(scene, settings, context);
+            const double share = 1.0 / (double(list.frames.size()) * args.repeat), offset = (double(f) * args.repeat + r) * share;
+            result = renderer.render(scene, [&](double fraction) { progress.update(offset + share * fraction); });
         }
-        writeImage(image, outputs[f]);
-        stats.addTime("total", std::chrono::duration<double>(Clock::now() - start).count());
+        sk::Stats& stats = result.stats;
+        stats.counters["repeat"] = args.repeat;
+        if (list.isSequence) stats.counters["frame"] = list.frames[f];
+        sk::writeImage(result.image, outputs[f]);
+        stats.timesMs.emplace_back("total", std::chrono::duration<double, std::milli>(Clock::now() - start).count());
         if (isStatsPerFrame) {
             try {
-                writeTextFile(statsPaths[f], stats.toJson());
+                writeTextFile(statsPaths[f], stats.json());
             } catch (const Error&) {
                 std::filesystem::remove(outputs[f]);  // all or nothing, per frame
                 throw;
             }
         } else if (!args.stats.empty()) {
-            frameJson.push_back(stats.toJson());
+            frameJson.push_back(stats.json());
         }
     }
     if (!args.stats.empty() && !isStatsPerFrame) {
@@ -484,22 +386,20 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
     if (!heatmap.empty()) checkWritable(heatmap, true);
     if (!(foregroundLevel >= 0.0 && foregroundLevel < 255.0))
         throw Error("--foreground-threshold must be in [0, 255) (sRGB 8-bit levels), got " + std::to_string(foregroundLevel));
-    const Image imageA = readImage(a);
-    const Image imageB = readImage(b);
-    if (imageA.width() != imageB.width() || imageA.height() != imageB.height())
-        throw Error("cannot compare " + a + " (" + std::to_string(imageA.width()) + "x" + std::to_string(imageA.height()) + ") with " +
-                    b + " (" + std::to_string(imageB.width()) + "x" + std::to_string(imageB.height()) + "): sizes differ");
-    const double p = psnr(imageA, imageB);
-    const double s = ssim(imageA, imageB);
-    const ForegroundPsnr foreground = foregroundPsnr(imageA, imageB, float(foregroundLevel / 255.0));
+    const sk::Image imageA = sk::readImage(a);
+    const sk::Image imageB = sk::readImage(b);
+    if (imageA.width != imageB.width || imageA.height != imageB.height)
+        throw Error("cannot compare " + a + " (" + std::to_string(imageA.width) + "x" + std::to_string(imageA.height) + ") with " + b +
+                    " (" + std::to_string(imageB.width) + "x" + std::to_string(imageB.height) + "): sizes differ");
+    const sk::Comparison c = sk::compare(imageA, imageB, float(foregroundLevel / 255.0));
     std::ostringstream out;
     out.precision(4);
-    out << std::fixed << "PSNR: " << decibels(p) << " dB\nSSIM: " << s << "\n";
-    out << "foreground PSNR: " << decibels(foreground.psnr) << " dB (" << foreground.pixels << " pixels)\n";
+    out << std::fixed << "PSNR: " << decibels(c.psnr) << " dB\nSSIM: " << c.ssim << "\n";
+    out << "foreground PSNR: " << decibels(c.foregroundPsnr) << " dB (" << c.foregroundPixels << " pixels)\n";
     if (!heatmap.empty()) {
-        double maxError = 0.0;
-        writeImage(errorHeatmap(imageA, imageB, &maxError), heatmap);
-        out << "heatmap: " << heatmap << " (white = " << maxError << " largest error)\n";
+        const sk::Heatmap map = sk::errorHeatmap(imageA, imageB);
+        sk::writeImage(map.image, heatmap);
+        out << "heatmap: " << heatmap << " (white = " << map.maxError << " largest error)\n";
     }
     std::cout << out.str();
     return 0;
@@ -508,50 +408,35 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
 int runExport(const std::string& spec, const std::string& path) {
     if (lowercaseExtension(path) != ".glb") throw Error("cannot write " + path + ": export writes glTF binary (.glb) only");
     checkWritable(path, false);
-    Scene scene = loadScene(spec, GltfOptions{}, nullptr);
-    validateScene(scene);
-    const std::vector<std::uint8_t> bytes = writeGltfBinary(scene);
-    writeTextFile(path, std::string(bytes.begin(), bytes.end()));
+    sk::Scene::load(spec).writeGltf(path);
     return 0;
 }
 
 // `streak shell`: the blur shell at T = --frame / --fps and the mesh there, as glTF, so the
 // trail can be seen from any angle while the animation is paused (Jones 2004, section 3.3).
 int runShell(const RenderArgs& args) {
-    OptionMap options("shell");
+    std::map<std::string, std::string> options;
     addOptionFlags(args.options, options);
-    const BlurShellOptions shellOptions = BlurShellOptions::read(options);
-    options.rejectUnknown();
+    sk::LoadOptions load = loadOptions(args);
+    load.trail = sk::blurShellTrail(options);
     const std::string extension = lowercaseExtension(args.output);
     if (extension != ".glb" && extension != ".gltf") throw Error("cannot write " + args.output + ": shell writes glTF (.glb or .gltf)");
     checkWritable(args.output, false);
-    GltfOptions gltf = gltfOptions(args);
-    RenderStats stats;
-    applyTrail(args, AnimationTrail{shellOptions.lengthSeconds, shellOptions.subdivisions + 1}, "shell", gltf, stats);
-    Scene scene = loadScene(args.scene, gltf, &stats);
-    validateScene(scene);
-    const BlurShell shell = buildBlurShell(scene, shellOptions);
-    const ShellScene out = makeShellScene(scene, shell);
-    std::size_t triangles = 0;
-    for (std::size_t m = out.firstShellMesh; m < out.scene.meshes.size(); ++m) triangles += out.scene.meshes[m].triangles.size();
-    if (extension == ".gltf") {
-        writeTextFile(args.output, writeGltfText(out.scene));
-    } else {
-        const std::vector<std::uint8_t> bytes = writeGltfBinary(out.scene);
-        writeTextFile(args.output, std::string(bytes.begin(), bytes.end()));
-    }
-    std::cout << "shell: " << shell.numStrips << " strips, " << triangles << " triangles (" << shell.silhouetteEdges
+    if (sk::isGltfFile(args.scene)) checkTrailFlags(args, "shell");
+    const sk::BlurShell shell = sk::blurShell(sk::Scene::load(args.scene, load), options);
+    shell.scene.writeGltf(args.output);
+    std::cout << "shell: " << shell.strips << " strips, " << shell.triangles << " triangles (" << shell.silhouetteEdges
               << " silhouette edges at the last update) -> " << args.output << "\n";
     return 0;
 }
 
 int runScenes() {
-    for (const BuiltinSceneInfo& info : builtinScenes()) std::cout << "builtin:" << info.name << "  " << info.description << "\n";
+    for (const sk::SceneInfo& info : sk::builtinScenes()) std::cout << "builtin:" << info.name << "  " << info.description << "\n";
     return 0;
 }
 
 int runMethods() {
-    for (const MethodInfo& info : registeredMethods()) std::cout << info.name << "  " << info.description << "\n";
+    for (const sk::Method& info : sk::methods()) std::cout << info.name << "  " << info.description << "\n";
     return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include "image/color.h"
 #include "util/error.h"
+#include "util/file_io.h"
 
 #include <Iex.h>
 #include <ImathBox.h>
@@ -15,7 +16,6 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -24,7 +24,6 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <system_error>
 #include <vector>
@@ -34,7 +33,6 @@ namespace streak {
 namespace {
 
 // Helpers throw std::runtime_error carrying only the reason; writeImage/readImage add the path.
-std::string errnoReason(int err) { return std::error_code(err, std::generic_category()).message(); }
 
 // streak::Error messages are one line; library messages occasionally are not.
 std::string oneLine(std::string text) {
@@ -127,38 +125,6 @@ std::vector<char> encodeExr(const Image& image, const std::string& path) {
         file.writePixels(image.height());
     }
     return std::move(stream.bytes());
-}
-
-// A name beside the target, so the final rename stays within one file system.
-std::string tempPathFor(const std::string& path) {
-    static const unsigned processTag = std::random_device{}();
-    static std::atomic<unsigned> counter{0};
-    char suffix[32];
-    std::snprintf(suffix, sizeof(suffix), ".tmp-%08x-%x", processTag, counter++);
-    return path + suffix;
-}
-
-// Writes to a temporary file and renames it over path, so readers never see a partial file
-// and a failure leaves nothing behind.
-void writeFileAtomically(const std::string& path, const std::vector<char>& bytes) {
-    const std::string temp = tempPathFor(path);
-    std::FILE* file = std::fopen(temp.c_str(), "wbx");  // x: never clobber another writer's temp
-    if (!file) throw std::runtime_error(errnoReason(errno));
-
-    int err = 0;
-    if (std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size()) err = errno ? errno : EIO;
-    if (std::fclose(file) != 0 && err == 0) err = errno ? errno : EIO;
-    if (err != 0) {
-        std::remove(temp.c_str());
-        throw std::runtime_error(errnoReason(err));
-    }
-
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::remove(temp.c_str());
-        throw std::runtime_error(ec.message());
-    }
 }
 
 std::vector<char> readFile(const std::string& path) {

@@ -170,7 +170,7 @@ PYBIND11_MODULE(streak, m) {
                 py::gil_scoped_release release;
                 result = sk::render(sc, s);
             }
-            if (stats) return py::make_tuple(arrayOf(result.image), py::module_::import("json").attr("loads")(result.statsJson));
+            if (stats) return py::make_tuple(arrayOf(result.image), py::module_::import("json").attr("loads")(result.stats.json()));
             return arrayOf(result.image);
         },
         py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
@@ -181,12 +181,15 @@ PYBIND11_MODULE(streak, m) {
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));
         return out;
     }, "[(name, description)] of every method");
-    m.def("compare", [](const py::handle& a, const py::handle& b) {
-        const sk::Comparison c = sk::compare(imageOf(a, "a"), imageOf(b, "b"));
+    m.def("compare", [](const py::handle& a, const py::handle& b, float threshold) {
+        const sk::Comparison c = sk::compare(imageOf(a, "a"), imageOf(b, "b"), threshold);
         py::dict out;
         out["psnr"] = c.psnr, out["ssim"] = c.ssim;
+        out["foreground_psnr"] = c.foregroundPsnr, out["foreground_pixels"] = c.foregroundPixels;
         return out;
-    }, py::arg("a"), py::arg("b"), "{'psnr': dB, 'ssim': ...} of two H x W x 3 images in display space");
+    }, py::arg("a"), py::arg("b"), py::arg("foreground_threshold") = 2.0f / 255.0f,
+    "{'psnr': dB, 'ssim', 'foreground_psnr', 'foreground_pixels'} of two H x W x 3 images in display space "
+    "(foreground: where a channel of either is above the threshold)");
     m.def("write_image", [](const py::handle& image, const std::string& path) { sk::writeImage(imageOf(image, "image"), path); },
           py::arg("image"), py::arg("path"), ".png (sRGB 8-bit) or .exr (linear float)");
     m.def("read_image", [](const std::string& path) { return arrayOf(sk::readImage(path)); }, py::arg("path"));

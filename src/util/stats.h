@@ -23,6 +23,8 @@ public:
     double counter(const std::string& name) const;
     bool hasCounter(const std::string& name) const { return m_counters.count(name) != 0; }
     const std::vector<std::pair<std::string, double>>& phases() const { return m_phases; }
+    const std::map<std::string, double>& counters() const { return m_counters; }
+    const std::map<std::string, std::string>& info() const { return m_info; }
 
     // {"info": {...}, "time_ms": {phase: ms, ...}, "counters": {...}}, pretty-printed.
     std::string toJson() const;

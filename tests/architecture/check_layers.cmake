@@ -1,5 +1,6 @@
 # Fails when a file under src/methods/<name>/ includes another method's headers, or when a lower
-# layer (util, image, scene, raster, then exposure) includes a higher one. Run by CTest as Architecture.Layers.
+# layer (util, image, scene, raster, then exposure) includes a higher one, or when the command
+# line (APPS) includes anything of streak's but the public API. Run by CTest as Architecture.Layers.
 file(GLOB_RECURSE sources "${SRC}/*.h" "${SRC}/*.cpp")
 set(violations "")
 foreach(path IN LISTS sources)
@@ -29,6 +30,20 @@ foreach(path IN LISTS sources)
     endif()
   endforeach()
 endforeach()
+# The command line is a client of the public API (include/streak/) only.
+file(GLOB_RECURSE app_sources "${APPS}/*.h" "${APPS}/*.cpp")
+foreach(path IN LISTS app_sources)
+  file(RELATIVE_PATH rel "${APPS}" "${path}")
+  file(STRINGS "${path}" includes REGEX "^#include ")
+  foreach(line IN LISTS includes)
+    if(line MATCHES "^#include \"" OR line MATCHES "^#include <(util|image|scene|raster|exposure|methods|gpu|api|python)/")
+      list(APPEND violations "apps/${rel} includes more than the public API: ${line}")
+    endif()
+  endforeach()
+endforeach()
+if(NOT app_sources)
+  list(APPEND violations "no command-line sources under ${APPS}")
+endif()
 if(violations)
   list(JOIN violations "\n  " text)
   message(FATAL_ERROR "layering violations:\n  ${text}")

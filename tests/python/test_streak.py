@@ -86,6 +86,14 @@ class RenderTest(unittest.TestCase):
         b = streak.render("builtin:crossing", method="accumulation", width=32, height=24, options={"samples": "256"})
         self.assertEqual(streak.compare(a, a)["psnr"], float("inf"))
         self.assertGreater(streak.compare(a, b)["psnr"], 40.0)
+        # One of two pixels off by a whole level: 3.01 dB over the image, 0 dB over the foreground.
+        black = np.zeros((1, 2, 3), dtype=np.float32)
+        lit = black.copy()
+        lit[0, 0] = 1.0
+        c = streak.compare(black, lit)
+        self.assertAlmostEqual(c["psnr"], 10.0 * np.log10(2.0), places=5)
+        self.assertEqual(c["foreground_pixels"], 1)
+        self.assertAlmostEqual(c["foreground_psnr"], 0.0, places=5)
 
 
 if __name__ == "__main__":

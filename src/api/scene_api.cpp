@@ -1,30 +1,25 @@
-// The public API (include/streak/streak.h) over the layers: scene loading and building, the
-// method registry, rendering, image files. Inside namespace streak::api the public types
-// shadow the layers' own of the same name; the layers' are written streak::X.
+// Scenes through the public API: loaded (built-in or glTF, with every loading option the command
+// line has), built from the user's arrays, re-exposed, written as glTF.
 
-#include "streak/streak.h"
+#include "api/api_internal.h"
 
-#include "image/image_io.h"
-#include "image/metrics.h"
-#include "methods/registry.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_writer.h"
 #include "scene/scene_loader.h"
 #include "scene/shutter.h"
+#include "util/file_io.h"
 
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 namespace streak::api {
 
-struct Scene::Impl {
-    streak::Scene scene;
-    SceneCleanup cleanup;
-};
-
 namespace {
-
-glm::vec3 vec3(const std::array<float, 3>& v) { return {v[0], v[1], v[2]}; }
 
 streak::CameraPose poseOf(const CameraPose& p, const std::string& which) {
     for (const auto* v : {&p.position, &p.target, &p.up})
@@ -35,9 +30,7 @@ streak::CameraPose poseOf(const CameraPose& p, const std::string& which) {
 }
 
 bool allFinite(const std::vector<float>& values) {
-    for (float v : values)
-        if (!std::isfinite(v)) return false;
-    return true;
+    return std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
 }
 
 streak::Mesh meshOf(const Mesh& in, std::size_t index, std::size_t numMaterials) {
@@ -83,37 +76,97 @@ streak::Texture textureOf(const Texture& in, std::size_t index) {
     return streak::Texture::fromLinear(in.width, in.height, std::move(linear));
 }
 
-Image imageOf(const streak::Image& in) {
-    Image out;
-    out.width = in.width(), out.height = in.height();
-    out.rgb.reserve(std::size_t(in.width()) * std::size_t(in.height()) * 3);
-    for (const glm::vec3& p : in.pixels()) out.rgb.insert(out.rgb.end(), {p.x, p.y, p.z});
-    return out;
+streak::Shutter shutterOf(const Shutter& in) {
+    streak::Shutter shutter;
+    shutter.curve = ShutterCurve::parse(in.curve);
+    shutter.rollingDuration = checkRollingDuration(in.rollingDuration);
+    return shutter;
 }
 
-streak::Image imageOf(const Image& in) {
-    if (in.width <= 0 || in.height <= 0 || in.rgb.size() != std::size_t(in.width) * std::size_t(in.height) * 3)
-        throw Error("image: rgb must be width x height x 3 floats");
-    streak::Image out(in.width, in.height);
-    for (std::size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
-    return out;
+glm::vec3 backgroundOf(const std::array<float, 3>& c) {
+    for (float x : c)
+        if (!(std::isfinite(x) && x >= 0.0f)) throw Error("background must be three non-negative finite numbers r,g,b");
+    return vec3(c);
+}
+
+// The glTF loader's options from the public ones (everything but the frame, which depends on the
+// shutter position or the trail).
+GltfOptions gltfOptionsOf(const LoadOptions& o) {
+    GltfOptions gltf;
+    gltf.shutter = o.shutterFrames;
+    gltf.fps = o.fps;
+    gltf.animation = o.animation;
+    gltf.motionKeys = o.motionKeys;
+    if (o.motionCurve == "bezier") gltf.motionCurve = MotionInterpolation::Bezier;
+    else if (o.motionCurve != "linear") throw Error("motion curve must be linear or bezier, got '" + o.motionCurve + "'");
+    if (o.motionFitSamples < -1) throw Error("motion fit samples must be 0 or more (-1: the default), got " + std::to_string(o.motionFitSamples));
+    gltf.motionFitSamples = o.motionFitSamples;
+    gltf.keyTolerancePixels = o.keyTolerancePixels;
+    gltf.imageHeight = o.height;
+    gltf.aspect = float(o.width) / float(o.height);
+    gltf.camera = o.camera;
+    if (o.lookAt) {
+        GltfLookAt look;
+        look.position = vec3(o.lookAt->position);
+        look.target = vec3(o.lookAt->target);
+        look.up = vec3(o.lookAt->up);
+        if (o.lookAt->positionEnd) look.positionEnd = vec3(*o.lookAt->positionEnd);
+        if (o.lookAt->targetEnd) look.targetEnd = vec3(*o.lookAt->targetEnd);
+        look.verticalFovDegrees = o.lookAt->verticalFovDegrees;
+        gltf.lookAt = look;
+    }
+    return gltf;
+}
+
+// A trail over [T - length, T], T = frame / fps, with one key pose per trail key. The animation
+// holds its first pose before it starts, so a trail reaching back past 0 s moves only from there
+// (trail_before_start_seconds).
+void applyTrail(const Trail& trail, GltfOptions& gltf, double frame, RenderStats& stats) {
+    if (!(trail.lengthSeconds > 0.0 && std::isfinite(trail.lengthSeconds)) || trail.keys < 2)
+        throw Error("a trail needs a positive length and at least 2 keys");
+    const double end = frame / gltf.fps;
+    gltf.frame = frame - trail.lengthSeconds * gltf.fps;
+    gltf.shutter = trail.lengthSeconds * gltf.fps;
+    gltf.motionKeys = trail.keys;
+    stats.setInfo("trail", numberList({end - trail.lengthSeconds, end}) + " s");
+    stats.setCounter("trail_before_start_seconds", std::max(0.0, trail.lengthSeconds - end));
 }
 
 }  // namespace
 
+std::vector<SceneInfo> builtinScenes() {
+    std::vector<SceneInfo> out;
+    for (const BuiltinSceneInfo& info : streak::builtinScenes()) out.push_back({std::string(info.name), std::string(info.description)});
+    return out;
+}
+
+bool isGltfFile(const std::string& spec) { return isGltfSpec(spec); }
+
 Scene Scene::load(const std::string& spec, const LoadOptions& options) {
     if (options.width <= 0 || options.height <= 0) throw Error("load options: width and height must be positive");
-    GltfOptions gltf;
-    gltf.shutter = options.shutterFrames;
-    gltf.frame = shutterOpenFrame(parseShutterPosition(options.shutterPosition), options.frame, options.shutterFrames);
-    gltf.fps = options.fps;
-    gltf.animation = options.animation;
-    gltf.imageHeight = options.height;
-    gltf.aspect = float(options.width) / float(options.height);
     auto impl = std::make_shared<Impl>();
-    impl->scene = loadScene(spec, gltf);
-    impl->cleanup = validateScene(impl->scene);
-    return Scene(std::move(impl));
+    impl->spec = spec;
+    impl->isGltf = isGltfSpec(spec);
+    GltfOptions gltf = gltfOptionsOf(options);
+    const ShutterPosition position = parseShutterPosition(options.shutterPosition);
+    impl->shutterPosition = shutterPositionName(position);
+    const streak::Shutter shutter = shutterOf(options.shutter);
+    RenderStats& stats = impl->loadStats;
+    if (options.trail && impl->isGltf) {
+        applyTrail(*options.trail, gltf, options.frame, stats);
+        impl->trail = options.trail;
+    } else {
+        if (options.trail) stats.setInfo("trail", "the built-in scene's shutter");
+        gltf.frame = shutterOpenFrame(position, options.frame, options.shutterFrames);
+    }
+    {
+        PhaseTimer timer(stats, "load");
+        impl->scene = loadScene(spec, gltf, &stats);
+        if (options.background) impl->scene.background = backgroundOf(*options.background);
+        impl->scene.shutter = shutter;
+        impl->cleanup = validateScene(impl->scene);
+    }
+    return Impl::wrap(std::move(impl));
 }
 
 Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Material>& materials, const Camera& camera,
@@ -142,59 +195,37 @@ Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Mater
     scene.camera.close = poseOf(camera.close, "close");
     scene.camera.verticalFov = glm::radians(camera.verticalFovDegrees);
     scene.camera.zNear = camera.zNear;
-    scene.background = vec3(background);
+    scene.background = backgroundOf(background);
     impl->cleanup = validateScene(scene);
-    return Scene(std::move(impl));
+    return Impl::wrap(std::move(impl));
 }
 
 Scene Scene::withShutter(const Shutter& shutter) const {
     auto impl = std::make_shared<Impl>(*m_impl);
-    impl->scene.shutter.curve = ShutterCurve::parse(shutter.curve);
-    impl->scene.shutter.rollingDuration = checkRollingDuration(shutter.rollingDuration);
-    return Scene(std::move(impl));
+    impl->scene.shutter = shutterOf(shutter);
+    return Impl::wrap(std::move(impl));
+}
+
+void Scene::writeGltf(const std::string& path) const {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".glb" && extension != ".gltf") throw Error("cannot write " + path + ": a glTF file ends in .glb or .gltf");
+    std::vector<char> bytes;
+    if (extension == ".gltf") {
+        const std::string text = writeGltfText(m_impl->scene);
+        bytes.assign(text.begin(), text.end());
+    } else {
+        const std::vector<std::uint8_t> binary = writeGltfBinary(m_impl->scene);
+        bytes.assign(binary.begin(), binary.end());
+    }
+    try {
+        writeFileAtomically(path, bytes);
+    } catch (const std::exception& e) {
+        throw Error("cannot write " + path + ": " + e.what());
+    }
 }
 
 std::size_t Scene::numTriangles() const { return m_impl->scene.numTriangles(); }
 std::size_t Scene::skippedTriangles() const { return m_impl->cleanup.numSkipped(); }
-
-std::vector<Method> methods() {
-    std::vector<Method> out;
-    for (const MethodInfo& info : registeredMethods()) out.push_back({std::string(info.name), std::string(info.description)});
-    return out;
-}
-
-RenderResult render(const Scene& scene, const RenderSettings& settings) {
-    if (settings.width <= 0 || settings.height <= 0) throw Error("render: width and height must be positive");
-    if (settings.aa < 1 || settings.aa > 16) throw Error("render: aa must be in [1, 16], got " + std::to_string(settings.aa));
-    OptionMap options;
-    for (const auto& [key, value] : settings.options) options.set(key, value);
-    std::unique_ptr<Renderer> renderer = createRenderer(settings.method, options);
-    if (renderer->animationTrail()) throw Error("method " + settings.method + " draws a trail: render it with the command line, which loads the trail");
-    streak::RenderSettings s;
-    s.width = settings.width, s.height = settings.height, s.aa = settings.aa;
-    s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
-    s.seed = settings.seed;
-    RenderStats stats;
-    RenderContext context{stats};
-    RenderResult result;
-    {
-        PhaseTimer timer(stats, "render");
-        result.image = imageOf(renderer->render(scene.impl().scene, s, context));
-    }
-    stats.setInfo("method", settings.method);
-    stats.setCounter("triangles", double(scene.numTriangles()));
-    stats.setCounter("skipped_triangles", double(scene.skippedTriangles()));
-    result.statsJson = stats.toJson();
-    return result;
-}
-
-void writeImage(const Image& image, const std::string& path) { streak::writeImage(imageOf(image), path); }
-Image readImage(const std::string& path) { return imageOf(streak::readImage(path)); }
-
-Comparison compare(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height) throw Error("compare: the images' sizes differ");
-    const streak::Image x = imageOf(a), y = imageOf(b);
-    return {psnr(x, y), ssim(x, y)};
-}
 
 }  // namespace streak::api

@@ -1,0 +1,45 @@
+#pragma once
+
+// Images in and out of streak: linear-light RGB float, PNG/EXR files, and how two images differ.
+
+#include "streak/error.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace streak::api {
+
+// A linear-light RGB float image: width x height x 3 floats, row-major, top row first.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+    float at(int x, int y, int channel) const { return rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(channel)]; }
+};
+
+// PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing.
+void writeImage(const Image& image, const std::string& path);
+Image readImage(const std::string& path);
+// Throws Error unless the path ends in an image extension writeImage knows (.png, .exr), so a
+// caller can refuse a bad output before a long render.
+void checkImagePath(const std::string& path);
+
+// How two images of one size differ, in display space (sRGB-encoded, clamped), as `streak
+// compare` prints it: PSNR (dB; infinite when equal), SSIM, and the PSNR over the foreground,
+// the pixels where a channel of either image is above the threshold.
+struct Comparison {
+    double psnr = 0.0;
+    double ssim = 0.0;
+    double foregroundPsnr = 0.0;
+    std::size_t foregroundPixels = 0;
+};
+Comparison compare(const Image& a, const Image& b, float foregroundThreshold = 2.0f / 255.0f);
+
+// A false-colour image of the per-pixel error (white: the largest, maxError).
+struct Heatmap {
+    Image image;
+    double maxError = 0.0;
+};
+Heatmap errorHeatmap(const Image& a, const Image& b);
+
+}  // namespace streak::api

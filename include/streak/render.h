@@ -1,0 +1,83 @@
+#pragma once
+
+// Rendering a scene with a method: the methods by name, how to render, the image and figures.
+
+#include "streak/image.h"
+#include "streak/scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace streak::api {
+
+// The largest image width or height streak renders.
+inline constexpr int kMaxImageSize = 16384;
+
+// A method streak renders with (`streak methods`).
+struct Method {
+    std::string name;
+    std::string description;
+};
+std::vector<Method> methods();
+
+// How to render: the method by name and its options (as --option KEY=VALUE: samples,
+// max-intervals, ...), the image size, N x N anti-aliasing (n-rooks, or the regular grid),
+// Phong or unlit shading, the seed, and the worker threads (0: all cores).
+struct RenderSettings {
+    std::string method = "motion-path";
+    std::map<std::string, std::string> options;
+    int width = 1024, height = 768;
+    int aa = 1;
+    bool sampleGrid = false;
+    bool unlit = false;
+    std::uint64_t seed = 0;
+    int threads = 0;
+};
+
+// The figures of a render, as the command line's --stats writes them: wall time per phase (ms,
+// in the order the phases first ran), counters, and facts (scene, method, camera, shutter).
+struct Stats {
+    std::vector<std::pair<std::string, double>> timesMs;
+    std::map<std::string, double> counters;
+    std::map<std::string, std::string> info;
+    // {"info": {...}, "time_ms": {...}, "counters": {...}}
+    std::string json() const;
+};
+
+struct RenderResult {
+    Image image;
+    Stats stats;
+};
+
+// A method set up for one kind of image, kept between renders: a sequence of frames, or the
+// same frame again warm (GL programs built, caches filled).
+class Renderer {
+public:
+    // Throws Error for an unknown method, an option it does not take, or bad settings.
+    explicit Renderer(const RenderSettings& settings);
+    ~Renderer();
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+
+    // The trail a trail method (blur-shell) shows instead of the shutter: load a glTF scene for
+    // it with LoadOptions::trail. Empty for the shutter-average methods.
+    std::optional<Trail> trail() const;
+
+    // progress, if given, is called with the share done, from 0 to 1.
+    RenderResult render(const Scene& scene, const std::function<void(double)>& progress = {});
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+// One render with a Renderer made for it.
+RenderResult render(const Scene& scene, const RenderSettings& settings);
+
+}  // namespace streak::api

@@ -1,0 +1,44 @@
+#pragma once
+
+// What the public API's files share: the scene behind the opaque handle and the conversions
+// between the public plain structs and the layers' types. Inside namespace streak::api the
+// public types shadow the layers' own of the same name; the layers' are written streak::X.
+
+#include "streak/render.h"
+#include "streak/scene.h"
+
+#include "image/image.h"
+#include "scene/scene.h"
+#include "util/stats.h"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <initializer_list>
+#include <optional>
+#include <string>
+
+namespace streak::api {
+
+struct Scene::Impl {
+    streak::Scene scene;
+    SceneCleanup cleanup;
+    std::string spec = "arrays";           ///< what it was loaded from (--stats "scene")
+    std::string shutterPosition = "start";
+    bool isGltf = false;
+    std::optional<Trail> trail;            ///< the trail a glTF scene was loaded over
+    RenderStats loadStats;                 ///< the load's time and the loader's figures
+
+    // The handle over a finished Impl (Scene's constructor is private to it and its members).
+    static Scene wrap(std::shared_ptr<const Impl> impl) { return Scene(std::move(impl)); }
+};
+
+inline glm::vec3 vec3(const std::array<float, 3>& v) { return {v[0], v[1], v[2]}; }
+
+// "x,y,z,..." with every digit a float holds, so another renderer can rebuild what it describes.
+std::string numberList(std::initializer_list<double> values);
+
+Image imageOf(const streak::Image& in);
+streak::Image imageOf(const Image& in);
+
+}  // namespace streak::api

@@ -1,0 +1,152 @@
+// Rendering through the public API: the registry's methods kept as Renderers, and the figures
+// of each render as the command line's --stats reports them.
+
+#include "api/api_internal.h"
+
+#include "methods/registry.h"
+#include "raster/clip.h"
+#include "scene/shutter.h"
+
+#include <glm/trigonometric.hpp>
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <initializer_list>
+
+namespace streak::api {
+
+static_assert(kMaxImageSize == raster::kMaxImageSize, "the public size limit is the rasterizer's");
+
+namespace {
+
+// The camera the scene is rendered through, in the scene's world (glTF: +y up): each pose's
+// position and worldFromCamera rotation (w,x,y,z; the camera looks down its -z with +y up), the
+// vertical field of view and the near plane.
+void reportCamera(const streak::Camera& camera, RenderStats& stats) {
+    for (const auto& [name, pose] : {std::pair{"open", &camera.open}, std::pair{"close", &camera.close}}) {
+        const glm::vec3& p = pose->position;
+        const glm::quat& q = pose->worldFromCamera;
+        stats.setInfo(std::string("camera_") + name + "_position", numberList({p.x, p.y, p.z}));
+        stats.setInfo(std::string("camera_") + name + "_rotation_wxyz", numberList({q.w, q.x, q.y, q.z}));
+    }
+    stats.setInfo("camera_vertical_fov_deg", numberList({glm::degrees(camera.verticalFov)}));
+    stats.setInfo("camera_znear", numberList({camera.zNear}));
+}
+
+class CallbackProgress final : public ProgressReporter {
+public:
+    explicit CallbackProgress(const std::function<void(double)>& callback) : m_callback(callback) {}
+    void update(double fraction) override { m_callback(fraction); }
+
+private:
+    const std::function<void(double)>& m_callback;
+};
+
+Stats statsOf(const RenderStats& in) {
+    Stats out;
+    for (const auto& [phase, seconds] : in.phases()) out.timesMs.emplace_back(phase, seconds * 1000.0);
+    out.counters = in.counters();
+    out.info = in.info();
+    return out;
+}
+
+}  // namespace
+
+std::string numberList(std::initializer_list<double> values) {
+    std::string text;
+    for (const double value : values) {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.9g", value);
+        if (!text.empty()) text += ',';
+        text += buffer;
+    }
+    return text;
+}
+
+std::string Stats::json() const {
+    RenderStats stats;
+    for (const auto& [phase, ms] : timesMs) stats.addTime(phase, ms / 1000.0);
+    for (const auto& [name, value] : counters) stats.setCounter(name, value);
+    for (const auto& [name, value] : info) stats.setInfo(name, value);
+    return stats.toJson();
+}
+
+std::vector<Method> methods() {
+    std::vector<Method> out;
+    for (const MethodInfo& info : registeredMethods()) out.push_back({std::string(info.name), std::string(info.description)});
+    return out;
+}
+
+struct Renderer::Impl {
+    RenderSettings settings;
+    streak::RenderSettings layerSettings;
+    std::unique_ptr<streak::Renderer> method;
+};
+
+Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Impl>()) {
+    if (settings.width <= 0 || settings.height <= 0 || settings.width > kMaxImageSize || settings.height > kMaxImageSize)
+        throw Error("render: width and height must be in [1, " + std::to_string(kMaxImageSize) + "], got " + std::to_string(settings.width) +
+                    "x" + std::to_string(settings.height));
+    if (settings.aa < 1 || settings.aa > 16) throw Error("render: aa must be in [1, 16], got " + std::to_string(settings.aa));
+    if (settings.threads < 0) throw Error("render: threads must be 0 (all cores) or more, got " + std::to_string(settings.threads));
+    OptionMap options;
+    for (const auto& [key, value] : settings.options) options.set(key, value);
+    m_impl->method = createRenderer(settings.method, options);
+    m_impl->settings = settings;
+    streak::RenderSettings& s = m_impl->layerSettings;
+    s.width = settings.width, s.height = settings.height, s.aa = settings.aa;
+    s.isGridPattern = settings.sampleGrid;
+    s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
+    s.seed = settings.seed;
+}
+
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+std::optional<Trail> Renderer::trail() const {
+    const std::optional<AnimationTrail> trail = m_impl->method->animationTrail();
+    if (!trail) return std::nullopt;
+    return Trail{trail->lengthSeconds, trail->keys};
+}
+
+RenderResult Renderer::render(const Scene& scene, const std::function<void(double)>& progress) {
+    const Scene::Impl& in = scene.impl();
+    const RenderSettings& settings = m_impl->settings;
+    if (const std::optional<Trail> trail = this->trail(); trail && in.isGltf &&
+        !(in.trail && in.trail->lengthSeconds == trail->lengthSeconds && in.trail->keys == trail->keys))
+        throw Error("method " + settings.method + " draws a trail: load the glTF scene over it (LoadOptions::trail = Renderer::trail())");
+
+    RenderStats stats = in.loadStats;
+    stats.setInfo("scene", in.spec);
+    stats.setInfo("method", settings.method);
+    stats.setInfo("shading", settings.unlit ? "unlit" : "phong");
+    stats.setCounter("width", settings.width);
+    stats.setCounter("height", settings.height);
+    stats.setCounter("aa", settings.aa);
+    stats.setCounter("sample_grid", settings.sampleGrid ? 1 : 0);
+    stats.setCounter("triangles", double(in.scene.numTriangles()));
+    stats.setCounter("skipped_triangles", double(in.cleanup.numSkipped()));
+    stats.setCounter("skipped_nonfinite", double(in.cleanup.numNonFinite));
+    stats.setCounter("skipped_degenerate", double(in.cleanup.numDegenerate));
+    stats.setInfo("shutter_curve", in.scene.shutter.curve.name());
+    stats.setInfo("shutter_position", in.shutterPosition);
+    stats.setCounter("rolling_shutter", in.scene.shutter.rollingDuration);
+    reportCamera(in.scene.camera, stats);
+
+    std::optional<tbb::global_control> threadLimit;
+    if (settings.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
+    CallbackProgress reporter(progress);
+    RenderContext context{stats, progress ? &reporter : nullptr};
+    RenderResult result;
+    {
+        PhaseTimer timer(stats, "render");
+        result.image = imageOf(m_impl->method->render(in.scene, m_impl->layerSettings, context));
+    }
+    result.stats = statsOf(stats);
+    return result;
+}
+
+RenderResult render(const Scene& scene, const RenderSettings& settings) { return Renderer(settings).render(scene); }
+
+}  // namespace streak::api
