@@ -95,8 +95,7 @@ void Texture::buildMipChain(std::vector<Level>& levels) {
     }
 }
 
-glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
-    const Level& l = (*m_levels)[std::clamp(level, 0, numLevels() - 1)];
+[[gnu::always_inline]] inline glm::vec4 Texture::bilinearAt(const Level& l, const glm::vec2& uv) const {
     // Far-out coordinates are clamped so the texel index stays an int; wrapping cannot tell
     // them apart at float precision anyway.
     constexpr float kLimit = float(1 << 24);
@@ -116,16 +115,23 @@ glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
     return top + (bottom - top) * ay;
 }
 
-glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const {
+glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
+    return bilinearAt((*m_levels)[std::clamp(level, 0, numLevels() - 1)], uv);
+}
+
+[[gnu::always_inline]] inline glm::vec4 Texture::trilinearAt(const glm::vec2& uv, float lod) const {
     if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
-    const float maxLod = float(numLevels() - 1);
+    const std::vector<Level>& levels = *m_levels;
+    const float maxLod = float(levels.size() - 1);
     lod = std::clamp(std::isfinite(lod) ? lod : maxLod, 0.0f, maxLod);
     const int level = int(lod);
     const float frac = lod - float(level);
-    const glm::vec4 a = sampleBilinear(uv, level);
-    if (frac < 1.0f / 512.0f || level + 1 >= numLevels()) return a;
-    return glm::mix(a, sampleBilinear(uv, level + 1), frac);
+    const glm::vec4 a = bilinearAt(levels[std::size_t(level)], uv);
+    if (frac < 1.0f / 512.0f || std::size_t(level) + 1 >= levels.size()) return a;
+    return glm::mix(a, bilinearAt(levels[std::size_t(level) + 1], uv), frac);
 }
+
+glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const { return trilinearAt(uv, lod); }
 
 namespace {
 
@@ -163,10 +169,10 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(footprint.minLod));
     const int taps = std::clamp(int(std::ceil(e.major / width - 1e-3f)), 1, kMaxAnisotropy);
     const float lod = width > 0.0f ? std::log2(width) : 0.0f;
-    if (taps == 1) return sample(uv, lod);
+    if (taps == 1) return trilinearAt(uv, lod);
     const glm::vec2 step = e.majorAxis / size / float(taps);  // uv between taps
     glm::vec4 sum(0.0f);
-    for (int i = 0; i < taps; ++i) sum += sample(uv + step * (float(i) + 0.5f - 0.5f * float(taps)), lod);
+    for (int i = 0; i < taps; ++i) sum += trilinearAt(uv + step * (float(i) + 0.5f - 0.5f * float(taps)), lod);
     return sum / float(taps);
 }
 

@@ -66,6 +66,10 @@ private:
         std::vector<glm::vec4> texels;
     };
     static void buildMipChain(std::vector<Level>& levels);
+    // The bilinear tap and the trilinear one, inlined into the lookups (the hot loop of span
+    // shading): the public sample functions are these with their checks.
+    glm::vec4 bilinearAt(const Level& level, const glm::vec2& uv) const;
+    glm::vec4 trilinearAt(const glm::vec2& uv, float lod) const;
 
     // Level 0 is full resolution, the last is 1x1. Immutable once built, so copies of a scene
     // (blur-shell's shell scene) share the texels.
