@@ -17,6 +17,7 @@ void recordResolveStats(RenderStats& stats, const SampleResolveCounters& r, doub
     stats.setCounter("resolved_intervals_max", double(r.maxResolved));
     stats.setCounter("merges", double(r.merges));
     stats.setCounter("shaded_spans", double(r.shadedSpans));
+    stats.setCounter("hidden_intervals_culled", double(r.hiddenCulled));
 }
 
 }  // namespace streak::exposure

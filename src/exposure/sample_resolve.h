@@ -1,6 +1,7 @@
 #pragma once
 
 #include "exposure/exposure_interval.h"
+#include "exposure/occlusion_cull.h"
 #include "exposure/visible_pieces.h"
 #include "scene/shading.h"
 #include "util/stats.h"
@@ -16,12 +17,12 @@ namespace streak::exposure {
 
 // What resolving samples from exposure intervals did, summed over samples (for --stats).
 struct SampleResolveCounters {
-    std::int64_t intervals = 0, maxIntervals = 0, compressedSamples = 0, merges = 0, maxResolved = 0, shadedSpans = 0;
+    std::int64_t intervals = 0, maxIntervals = 0, compressedSamples = 0, merges = 0, maxResolved = 0, shadedSpans = 0, hiddenCulled = 0;
     double misorderedTime = 0.0, coveredPairTime = 0.0;
     double resolveSeconds = 0.0, shadeSeconds = 0.0;
     void add(const SampleResolveCounters& o) {
         intervals += o.intervals, maxIntervals = std::max(maxIntervals, o.maxIntervals), compressedSamples += o.compressedSamples;
-        merges += o.merges, maxResolved = std::max(maxResolved, o.maxResolved), shadedSpans += o.shadedSpans;
+        merges += o.merges, maxResolved = std::max(maxResolved, o.maxResolved), shadedSpans += o.shadedSpans, hiddenCulled += o.hiddenCulled;
         misorderedTime += o.misorderedTime, coveredPairTime += o.coveredPairTime;
         resolveSeconds += o.resolveSeconds, shadeSeconds += o.shadeSeconds;
     }
@@ -35,18 +36,19 @@ void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counter
 struct SampleResolveScratch {
     std::vector<float> weights;
     std::vector<VisiblePiece> pieces;
+    OcclusionScratch occlusion;
 };
 
 // The colour of one pixel sample from its exposure intervals (Gribel et al. 2010), for every
 // method that finds them: shade what must be known before the resolve (translucent opacity;
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
-// exactly over time, then shade each visible piece once (abutting whole pieces of a triangle
+// exactly over time (dropping first what is wholly hidden), then shade each visible piece once (abutting whole pieces of a triangle
 // merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
 // and shade(triangle, t0, t1) -> ShadedColor; exactDepth, when given, measures the linear
 // depths' misordering (resolveOpaque). Shares are of the sample row's exposure, `window`.
 template <class TriangleOf, class IsTranslucent, class Shade>
 glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const OracleWeights& oracle, const ExactDepth* exactDepth,
-                        const ShutterWindow& window, const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
+                        bool cullHidden, const ShutterWindow& window, const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
                         SampleResolveScratch& scratch, SampleResolveCounters& counters) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -64,6 +66,9 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
         ++counters.compressedSamples;
         counters.merges += compressIntervals(list, budget, oracle);
     }
+    // Wholly hidden intervals get no share in any resolve; the measure of the linear depths'
+    // misordering (exactDepth) sees them all.
+    if (cullHidden && !exactDepth) counters.hiddenCulled += std::int64_t(cullHiddenIntervals(list, scratch.occlusion));
     counters.maxResolved = std::max(counters.maxResolved, std::int64_t(list.size()));
     scratch.weights.resize(list.size());
     const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });

@@ -30,6 +30,7 @@ struct Options {
     int maxIntervals = 0;  ///< 0: unlimited
     exposure::OracleWeights oracle;
     bool tileCull = true;
+    bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
     bool checkDepthOrder = false;
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
@@ -242,7 +243,8 @@ private:
                     return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
                 };
             return exposure::resolveSample(
-                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, spanShading.window, scene.background,
+                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, frame.options.occlusionCull,
+                spanShading.window, scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
                 [&](std::uint32_t triangle, float t0, float t1) {
@@ -275,6 +277,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
         o.oracle = {h[0], h[1], h[2], h[3], h[4]};
     }
     o.tileCull = options.getInt("tile-cull", 1, 0, 1) != 0;
+    o.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));

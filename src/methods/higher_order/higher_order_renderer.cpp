@@ -39,6 +39,7 @@ struct Options {
     double depthTolerance = 1e-3;
     int maxIntervals = 0;
     int checkVisibility = 0;
+    bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
 };
@@ -286,7 +287,8 @@ private:
             SpanShadingSettings spanShading = frame.spanShading;
             spanShading.window = scene.shutter.rowWindow(row, height);
             return exposure::resolveSample(
-                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, spanShading.window, scene.background,
+                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, frame.options.occlusionCull, spanShading.window,
+                scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
                 [&](std::uint32_t triangle, float t0, float t1) {
@@ -378,6 +380,7 @@ std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options) {
     o.depthTolerance = options.getDouble("depth-tolerance", 1e-3, 0.0, 1.0);
     o.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
     o.checkVisibility = options.getInt("check-visibility", 0, 0, 20000);
+    o.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
     return std::make_unique<HigherOrderRenderer>(o);

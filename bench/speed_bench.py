@@ -1,0 +1,141 @@
+#!/usr/bin/python3
+"""Speed figures of docs/BENCHMARKS.md (issue 16): where the exact methods' time goes, and what
+each lever changed.
+
+Section profile: per-phase times and counters of motion-path and analytic on builtin:cubes at
+1024x768 and on the dense ToyCar (109k triangles) under a camera move (320x240, --aa 2), least
+of the repeats; with --baseline OLD_STREAK (a build of the commit before a change, run with its
+own libstreak.so beside it) both binaries are timed in the same run, alternating, and the images
+compared (PSNR between them: inf when the change is exact).
+
+Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
+
+Section memory: peak resident memory of each method on each scene (the process's maxrss).
+
+Profiles of the hot functions come from perf (Debian's linux-perf), not from this script:
+  perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
+  perf report --no-children --percent-limit 1 --stdio
+
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,threads,memory] [--repeats 3]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchlib import machine  # noqa: E402
+
+SHARED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
+TOYCAR = os.path.join(SHARED, "ToyCar", "glTF", "ToyCar.gltf")
+CASES = [
+    ("cubes 1024x768", ["builtin:cubes", "--width", "1024", "--height", "768"]),
+    ("ToyCar camera move 320x240 aa 2", [TOYCAR, "--camera-pos=-0.03,0.025,0.05", "--camera-target", "0,0,0",
+                                          "--camera-pos-end=-0.02,0.025,0.055", "--fov", "40", "--width", "320", "--height", "240",
+                                          "--aa", "2"]),
+]
+METHODS = [("motion-path", []), ("analytic", []), ("accumulation 64", ["-m", "accumulation", "--samples", "64"])]
+
+
+def run(binary, case_args, method_args, out, stats, extra=()):
+    """Renders once; returns (stats, peak resident MiB)."""
+    env = dict(os.environ)
+    if os.path.dirname(binary) not in ("", "build") and os.path.exists(os.path.join(os.path.dirname(binary), "libstreak.so")):
+        env["LD_LIBRARY_PATH"] = os.path.dirname(binary)  # a saved baseline with its own library
+    args = [binary, "render", *case_args, *method_args, *extra, "-o", out, "--stats", stats]
+    process = subprocess.Popen(args, env=env)
+    _, status, usage = os.wait4(process.pid, 0)
+    if status != 0:
+        raise SystemExit(f"failed: {' '.join(args)}")
+    with open(stats) as f:
+        return json.load(f), usage.ru_maxrss / 1024.0
+
+
+def method_args(name, extra):
+    return extra if extra else ["-m", name]
+
+
+def psnr(binary, a, b):
+    out = subprocess.run([binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
+    return out.split("\n")[0].split(":")[1].strip()
+
+
+def profile(args, tmp):
+    print("### Phases (ms, least of the repeats)\n")
+    binaries = [("this build", args.streak)] + ([("baseline", args.baseline)] if args.baseline else [])
+    for case, case_args in CASES:
+        if not os.path.exists(case_args[0]) and not case_args[0].startswith("builtin:"):
+            print(f"{case}: skipped, no {case_args[0]}\n")
+            continue
+        for method, extra in METHODS[:2]:
+            best = {}
+            for _ in range(args.repeats):
+                for label, binary in binaries:
+                    stats, _ = run(binary, case_args, method_args(method, extra), os.path.join(tmp, f"{label}.exr"),
+                                   os.path.join(tmp, "s.json"))
+                    if label not in best or stats["time_ms"]["render"] < best[label]["time_ms"]["render"]:
+                        best[label] = stats
+            phases = [p for p in best["this build"]["time_ms"] if p not in ("load", "tiles", "total")]
+            print(f"{case}, {method}:\n")
+            print("| build | " + " | ".join(phases) + " | hidden intervals culled | intervals / sample |")
+            print("|---|" + "---:|" * (len(phases) + 2))
+            for label, _ in binaries:
+                s = best[label]
+                cells = [f"{s['time_ms'].get(p, 0):.0f}" for p in phases]
+                c = s["counters"]
+                print(f"| {label} | " + " | ".join(cells) +
+                      f" | {c.get('hidden_intervals_culled', 0):.0f} | {c.get('intervals_per_sample_mean', 0):.2f} |")
+            if args.baseline:
+                ratio = best["baseline"]["time_ms"]["render"] / best["this build"]["time_ms"]["render"]
+                print(f"\nrender: baseline / this build = {ratio:.2f}; images apart: "
+                      f"{psnr(args.streak, os.path.join(tmp, 'this build.exr'), os.path.join(tmp, 'baseline.exr'))}\n")
+            else:
+                print()
+
+
+def threads(args, tmp):
+    print("### Thread scaling (render ms, least of the repeats)\n")
+    print("| scene | method | 1 thread | 2 threads | scaling |")
+    print("|---|---|---:|---:|---:|")
+    for case, case_args in CASES[:1]:
+        for method, extra in METHODS:
+            times = []
+            for n in (1, 2):
+                times.append(min(run(args.streak, case_args, method_args(method, extra), os.path.join(tmp, "t.exr"),
+                                     os.path.join(tmp, "s.json"), ["--threads", str(n)])[0]["time_ms"]["render"]
+                                 for _ in range(args.repeats)))
+            print(f"| {case} | {method} | {times[0]:.0f} | {times[1]:.0f} | {times[0] / times[1]:.2f} |", flush=True)
+    print()
+
+
+def memory(args, tmp):
+    print("### Peak memory (MiB resident, the whole process)\n")
+    print("| scene | " + " | ".join(m for m, _ in METHODS) + " |")
+    print("|---|" + "---:|" * len(METHODS))
+    for case, case_args in CASES:
+        if not os.path.exists(case_args[0]) and not case_args[0].startswith("builtin:"):
+            continue
+        cells = [f"{run(args.streak, case_args, method_args(m, e), os.path.join(tmp, 'm.exr'), os.path.join(tmp, 's.json'))[1]:.0f}"
+                 for m, e in METHODS]
+        print(f"| {case} | " + " | ".join(cells) + " |", flush=True)
+    print()
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--streak", default="build/streak")
+    parser.add_argument("--baseline", default="")
+    parser.add_argument("--sections", default="profile,threads,memory")
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    print(f"Machine: {machine()}.\n")
+    sections = {"profile": profile, "threads": threads, "memory": memory}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in args.sections.split(","):
+            sections[name](args, tmp)
+
+
+if __name__ == "__main__":
+    main()
