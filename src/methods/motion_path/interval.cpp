@@ -1,7 +1,11 @@
 #include "methods/motion_path/interval.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <utility>
+#include <vector>
 
 namespace streak::motion_path {
 
@@ -48,6 +52,8 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
     // the inner loop runs over the growing list, so every pair is seen once it exists.
     for (std::size_t i = 0; i < intervals.size(); ++i) {
         for (std::size_t j = i + 1; j < intervals.size(); ++j) {
+            // Disjoint depth ranges cannot cross (a cheap test before the copies).
+            if (intervals[j].minDepth() > intervals[i].maxDepth() || intervals[i].minDepth() > intervals[j].maxDepth()) continue;
             Interval aTail, bTail;
             Interval a = intervals[i], b = intervals[j];
             if (!splitAtCrossing(a, b, aTail, bTail)) continue;
@@ -64,20 +70,53 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
     }
     // Selection sort: place at i the first remaining interval that every other remaining one
     // lets stay in front. The relation only binds intervals sharing time, so it is a partial
-    // order; a cycle (possible with four or more intervals) falls back to the nearest.
+    // order; a cycle (possible with four or more intervals) falls back to the nearest. Only the
+    // remaining intervals nearer than a candidate's farthest depth can keep it from going first
+    // (test 1 passes for the rest), so they are scanned in order of nearest depth and the scan
+    // stops there: the same choices as checking them all, without the quadratic scan of dense
+    // lists. (Non-finite depths fall back to checking them all.)
     const std::size_t n = intervals.size();
+    if (n < 2) return;
+    const bool isFinite = std::all_of(intervals.begin(), intervals.end(), [](const Interval& x) {
+        return std::isfinite(x.depth0) && std::isfinite(x.depth1);
+    });
+    std::vector<std::uint32_t> order(n), byDepth(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::iota(byDepth.begin(), byDepth.end(), 0u);
+    if (isFinite)
+        std::sort(byDepth.begin(), byDepth.end(),
+                  [&](std::uint32_t a, std::uint32_t b) { return intervals[a].minDepth() < intervals[b].minDepth(); });
+    std::vector<char> isPlaced(n, 0);
+    std::size_t firstUnplaced = 0;  ///< in byDepth
+    auto canGoFirst = [&](std::uint32_t c, std::size_t i) {
+        if (!isFinite) {
+            for (std::size_t k = i; k < n; ++k)
+                if (order[k] != c && !canStayBefore(intervals[c], intervals[order[k]])) return false;
+            return true;
+        }
+        const float farthest = intervals[c].maxDepth();
+        for (std::size_t d = firstUnplaced; d < n; ++d) {
+            const std::uint32_t k = byDepth[d];
+            if (isPlaced[k]) continue;
+            if (intervals[k].minDepth() >= farthest) break;
+            if (k != c && !canStayBefore(intervals[c], intervals[k])) return false;
+        }
+        return true;
+    };
     for (std::size_t i = 0; i + 1 < n; ++i) {
         std::size_t front = i;
         bool found = false;
-        for (std::size_t c = i; c < n && !found; ++c) {
-            found = true;
-            for (std::size_t k = i; k < n && found; ++k)
-                if (k != c && !canStayBefore(intervals[c], intervals[k])) found = false;
-            if (found) front = c;
-        }
+        for (std::size_t c = i; c < n && !found; ++c)
+            if (canGoFirst(order[c], i)) found = true, front = c;
         if (!found) ++counters.cycles;
-        if (front != i) std::swap(intervals[i], intervals[front]);
+        if (front != i) std::swap(order[i], order[front]);
+        isPlaced[order[i]] = 1;
+        while (firstUnplaced < n && isPlaced[byDepth[firstUnplaced]]) ++firstUnplaced;
     }
+    std::vector<Interval> sorted;
+    sorted.reserve(n);
+    for (const std::uint32_t id : order) sorted.push_back(intervals[id]);
+    intervals.swap(sorted);
 }
 
 }  // namespace streak::motion_path

@@ -179,3 +179,60 @@ TEST(Resolve, ExactWeightsAreTheTimeIntegralOfTheNearest) {
 }
 
 }  // namespace streak::motion_path
+
+namespace streak::motion_path {
+
+// The paper's sort by its definition: split every crossing pair, then place at each position
+// the first remaining interval that every other remaining one lets stay in front, checking them
+// all. sortDepthTime scans only the candidates' depth neighbours; it must choose the same.
+TEST(DepthTimeSort, ChoosesAsTheFullSelectionDoes) {
+    auto reference = [](std::vector<Interval> list, int maxIntervals) {
+        std::sort(list.begin(), list.end(), [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
+        for (std::size_t i = 0; i < list.size(); ++i)
+            for (std::size_t j = i + 1; j < list.size(); ++j) {
+                Interval a = list[i], b = list[j], aTail, bTail;
+                if (!splitAtCrossing(a, b, aTail, bTail) || int(list.size()) + 2 > maxIntervals) continue;
+                list[i] = a, list[j] = b;
+                list.push_back(aTail), list.push_back(bTail);
+            }
+        for (std::size_t i = 0; i + 1 < list.size(); ++i) {
+            std::size_t front = i;
+            for (std::size_t c = i; c < list.size(); ++c) {
+                bool ok = true;
+                for (std::size_t k = i; k < list.size() && ok; ++k) ok = k == c || canStayBefore(list[c], list[k]);
+                if (ok) {
+                    front = c;
+                    break;
+                }
+            }
+            std::swap(list[i], list[front]);
+        }
+        return list;
+    };
+    Rng rng(5);
+    int cycles = 0, splits = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        // Dense lists: up to 40 intervals over a narrow depth band, so most overlap in depth.
+        std::vector<Interval> list;
+        const int n = 2 + int(rng.next() % 39);
+        for (int i = 0; i < n; ++i) {
+            float t0 = rng.uniform(), t1 = rng.uniform();
+            if (t0 > t1) std::swap(t0, t1);
+            list.push_back(make(t0, std::max(t1, t0 + 0.01f), rng.uniform(1.0f, 3.0f), rng.uniform(1.0f, 3.0f), std::uint32_t(i)));
+        }
+        const std::vector<Interval> expected = reference(list, 90);
+        SortCounters counters;
+        sortDepthTime(list, 90, counters);
+        cycles += counters.cycles, splits += counters.splits;
+        ASSERT_EQ(list.size(), expected.size()) << "trial " << trial;
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            EXPECT_EQ(list[i].source, expected[i].source) << "trial " << trial << " place " << i;
+            EXPECT_EQ(list[i].t0, expected[i].t0) << "trial " << trial << " place " << i;
+            EXPECT_EQ(list[i].depth0, expected[i].depth0) << "trial " << trial << " place " << i;
+        }
+    }
+    EXPECT_GT(splits, 1000);  // crossings were split and sorted, not only disjoint lists
+    EXPECT_GT(cycles, 0);     // and the cycle fallback was met
+}
+
+}  // namespace streak::motion_path
