@@ -29,6 +29,12 @@ struct Scene::Impl {
     std::optional<Trail> trail;            ///< the trail a glTF scene was loaded over
     RenderStats loadStats;                 ///< the load's time and the loader's figures
 
+    // Whether a trail method may draw this scene with `needed`: a glTF scene must have been
+    // loaded over that trail; a built-in or arrays scene's shutter is its trail.
+    bool canShowTrail(const Trail& needed) const {
+        return !isGltf || (trail && trail->lengthSeconds == needed.lengthSeconds && trail->keys == needed.keys);
+    }
+
     // The handle over a finished Impl (Scene's constructor is private to it and its members).
     static Scene wrap(std::shared_ptr<const Impl> impl) { return Scene(std::move(impl)); }
 };

@@ -19,18 +19,16 @@ BlurShellOptions shellOptionsOf(const std::map<std::string, std::string>& option
     return shell;
 }
 
+Trail trailOf(const BlurShellOptions& shell) { return Trail{shell.lengthSeconds, shell.subdivisions + 1}; }
+
 }  // namespace
 
-Trail blurShellTrail(const std::map<std::string, std::string>& options) {
-    const BlurShellOptions shell = shellOptionsOf(options);
-    return Trail{shell.lengthSeconds, shell.subdivisions + 1};
-}
+Trail blurShellTrail(const std::map<std::string, std::string>& options) { return trailOf(shellOptionsOf(options)); }
 
 BlurShell blurShell(const Scene& trail, const std::map<std::string, std::string>& options) {
     const BlurShellOptions shellOptions = shellOptionsOf(options);
     const Scene::Impl& in = trail.impl();
-    const Trail needed = blurShellTrail(options);
-    if (in.isGltf && !(in.trail && in.trail->lengthSeconds == needed.lengthSeconds && in.trail->keys == needed.keys))
+    if (!in.canShowTrail(trailOf(shellOptions)))
         throw Error("the shell's glTF scene must be loaded over its trail (LoadOptions::trail = blurShellTrail(options))");
     const streak::BlurShell shell = buildBlurShell(in.scene, shellOptions);
     ShellScene shellScene = makeShellScene(in.scene, shell);

@@ -113,8 +113,7 @@ std::optional<Trail> Renderer::trail() const {
 RenderResult Renderer::render(const Scene& scene, const std::function<void(double)>& progress) {
     const Scene::Impl& in = scene.impl();
     const RenderSettings& settings = m_impl->settings;
-    if (const std::optional<Trail> trail = this->trail(); trail && in.isGltf &&
-        !(in.trail && in.trail->lengthSeconds == trail->lengthSeconds && in.trail->keys == trail->keys))
+    if (const std::optional<Trail> trail = this->trail(); trail && !in.canShowTrail(*trail))
         throw Error("method " + settings.method + " draws a trail: load the glTF scene over it (LoadOptions::trail = Renderer::trail())");
 
     RenderStats stats = in.loadStats;

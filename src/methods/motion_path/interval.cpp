@@ -80,13 +80,17 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
     const bool isFinite = std::all_of(intervals.begin(), intervals.end(), [](const Interval& x) {
         return std::isfinite(x.depth0) && std::isfinite(x.depth1);
     });
-    std::vector<std::uint32_t> order(n), byDepth(n);
+    // Per-thread scratch: this runs once per pixel sample.
+    thread_local std::vector<std::uint32_t> order, byDepth;
+    thread_local std::vector<char> isPlaced;
+    thread_local std::vector<Interval> sorted;
+    order.resize(n), byDepth.resize(n);
     std::iota(order.begin(), order.end(), 0u);
     std::iota(byDepth.begin(), byDepth.end(), 0u);
     if (isFinite)
         std::sort(byDepth.begin(), byDepth.end(),
                   [&](std::uint32_t a, std::uint32_t b) { return intervals[a].minDepth() < intervals[b].minDepth(); });
-    std::vector<char> isPlaced(n, 0);
+    isPlaced.assign(n, 0);
     std::size_t firstUnplaced = 0;  ///< in byDepth
     auto canGoFirst = [&](std::uint32_t c, std::size_t i) {
         if (!isFinite) {
@@ -113,8 +117,7 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
         isPlaced[order[i]] = 1;
         while (firstUnplaced < n && isPlaced[byDepth[firstUnplaced]]) ++firstUnplaced;
     }
-    std::vector<Interval> sorted;
-    sorted.reserve(n);
+    sorted.clear();
     for (const std::uint32_t id : order) sorted.push_back(intervals[id]);
     intervals.swap(sorted);
 }
