@@ -12,17 +12,21 @@ Sections (all by default, or pick with --sections):
              higher-order on --motion-curve bezier with 3 and 4 keys (the curve through the
              animation at 3 or 4 times, and the least-squares fit to 4n + 1 poses).
   traversal  The paper's tables on the curved scenes (keys=3 curve=bezier): sample test
-             efficiency and time of bounding-box traversal and generalized INTERVAL with 4, 16
-             and 64 sub-intervals.
+             efficiency and time of bounding-box traversal, generalized INTERVAL with 4, 16
+             and 64 sub-intervals and TILE with 4x4, 2x2 and 1x1 blocks; TILE's speed-up over
+             the bounding box and what its two tests (Triangle-Tile, Edge-Tile) culled.
   solvers    Closed form against Bezier clipping: time and agreement (PSNR between them).
   speed      Time per frame at 1024x768 of higher-order against analytic with the same poses
              (3 keys), on spin and clothball.
 
-Times are the "render" phase of --stats, the least of --repeats runs.
+Times are the "render" phase of --stats, the least of --repeats runs. With --plot DIR the
+quality and traversal sections also draw DIR/higher_order_quality.png and
+DIR/higher_order_traversal.png.
 
-usage: bench/higher_order_bench.py [--streak build/streak] [--sections quality,gltf,traversal,solvers,speed] [--repeats 3]
+usage: bench/higher_order_bench.py [--streak build/streak] [--sections quality,gltf,traversal,solvers,speed] [--repeats 3] [--plot docs]
 """
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -49,19 +53,46 @@ def quality(streak, args):
     print("| scene | analytic 2 keys | analytic 3 | analytic 5 | analytic 9 | higher-order n=2 (3 keys) | higher-order n=3 (4 keys) | visibility accuracy n=2 |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
     out = os.path.join(streak.tmp, "q.exr")
+    curves = {}
     for name in CURVED + MODERATE:
         ref = reference(streak, name)
-        row = []
+        linear, curved = [], []
         for keys in (2, 3, 5, 9):
             streak.render(scene(name, keys), "analytic", out, args=FLAGS, repeats=1)
-            row.append(f"{streak.psnr(ref, out):.1f} dB")
+            linear.append((keys, streak.psnr(ref, out)))
         for keys in (3, 4):
             _, stats = streak.render(scene(name, keys, "bezier"), "higher-order", out, args=[*FLAGS, "--option", "check-visibility=20000"], repeats=1)
-            row.append(f"{streak.psnr(ref, out):.1f} dB")
+            curved.append((keys, streak.psnr(ref, out)))
             if keys == 3:
                 accuracy = stats["counters"]["visibility_accuracy"]
-        print(f"| {name} | " + " | ".join(row) + f" | {100 * accuracy:.2f}% |", flush=True)
+        curves[name] = (linear, curved)
+        print(f"| {name} | " + " | ".join(f"{db:.1f} dB" for _, db in linear + curved) + f" | {100 * accuracy:.2f}% |", flush=True)
     print()
+    if args.plot:
+        plt = pyplot()
+        fig, axes = plt.subplots(2, 3, figsize=(11, 6.5), sharey=True)
+        for ax, (name, (linear, curved)) in zip(axes.flat, curves.items()):
+            ax.plot([k for k, _ in linear], [db for _, db in linear], "o-", label="analytic, K linear keys")
+            ax.plot([k for k, _ in curved], [db for _, db in curved], "s--", color="C3", label="higher-order, n = K - 1")
+            ax.axhline(45.0, color="grey", lw=0.8, ls=":", label="target n = 2: 45 dB")
+            ax.set_title(name, fontsize=9)
+            ax.set_xticks([2, 3, 4, 5, 9])
+            ax.set_xlabel("poses (keys) of the true motion")
+            ax.grid(alpha=0.3)
+        axes[0][0].set_ylabel("PSNR dB vs the true motion")
+        axes[1][0].set_ylabel("PSNR dB vs the true motion")
+        axes[0][0].legend(fontsize=7)
+        fig.suptitle("Curved motion: chords against Bezier curves through the same poses (256x192)", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.plot, "higher_order_quality.png"), dpi=90)
+        plt.close(fig)
+
+
+def pyplot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
 
 
 MODELS = [
@@ -100,14 +131,48 @@ def traversal(streak, args):
     print("| scene | bbox STE | ms | INTERVAL 4 STE | ms | INTERVAL 16 STE | ms | INTERVAL 64 STE | ms | TILE 4x4 STE | ms | TILE 2x2 STE | ms | TILE 1x1 STE | ms |")
     print("|---|" + "---:|" * (2 * len(options)))
     out = os.path.join(streak.tmp, "t.exr")
+    results = {}
     for name in CURVED:
         row = []
         for combined in options:
             option = [a for pair in combined.split("&") for a in ("--option", pair)]
             ms, stats = streak.render(scene(name, 3, "bezier"), "higher-order", out, args=[*FLAGS, *option])
+            results[name, combined] = (ms, stats["counters"])
             row += [f"{100 * stats['counters']['sample_test_efficiency']:.1f}%", f"{ms:.0f}"]
         print(f"| {name} | " + " | ".join(row) + " |", flush=True)
     print()
+    print("TILE's two tests: blocks culled for the whole shutter (of those, by the Triangle-Tile test alone), eighths of the "
+          "shutter proved missed (by the Triangle-Tile test), and the speed-up over the bounding box\n")
+    print("| scene | blocks | tested | culled | by Triangle-Tile alone | time culled | by Triangle-Tile | speed-up over bbox |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for name in CURVED:
+        bbox_ms = results[name, "traversal=bbox"][0]
+        for side in (4, 2, 1):
+            ms, c = results[name, f"traversal=tile&tile={side}"]
+            tested = c["tile_tests"]
+            print(f"| {name} | {side}x{side} | {tested:.0f} | {100 * c['tiles_culled'] / tested:.1f}% | "
+                  f"{100 * c['tiles_culled_by_triangle_test'] / tested:.1f}% | {100 * c['tile_time_culled_fraction']:.1f}% | "
+                  f"{100 * c['tile_time_culled_by_triangle_test']:.1f}% | {bbox_ms / ms:.2f} |", flush=True)
+    print()
+    if args.plot:
+        plt = pyplot()
+        fig, axes = plt.subplots(1, len(CURVED), figsize=(12, 3.6))
+        for ax, name in zip(axes, CURVED):
+            for combined in options:
+                ms, c = results[name, combined]
+                side = re.search(r"tile=(\d)", combined)
+                label = f"TILE {side[1]}x{side[1]}" if side else ("bbox" if "bbox" in combined else "INTERVAL " + combined.split("=")[1])
+                marker = "o" if "tile" in combined else ("s" if "bbox" in combined else "^")
+                ax.plot(ms, 100 * c["sample_test_efficiency"], marker, color="C0" if "tile" in combined else ("C3" if "bbox" in combined else "C2"))
+                ax.annotate(label, (ms, 100 * c["sample_test_efficiency"]), fontsize=7, xytext=(3, 3), textcoords="offset points")
+            ax.set_title(name, fontsize=9)
+            ax.set_xlabel("ms per frame (256x192, 2 cores)")
+            ax.grid(alpha=0.3)
+        axes[0].set_ylabel("sample test efficiency %")
+        fig.suptitle("Traversal: bounding box (red), INTERVAL (green), TILE (blue)", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.plot, "higher_order_traversal.png"), dpi=90)
+        plt.close(fig)
 
 
 def solvers(streak, args):

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace streak::raster {
 
@@ -53,12 +54,13 @@ glm::dvec3 CurvedTriangle::corner(int i, double u) const {
     return c[0];
 }
 
-bool CurvedTriangle::missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments, int* culledPieces) const {
+CurvedTriangle::PieceMask CurvedTriangle::piecesMissedByEdges(const glm::dvec2& centre, const glm::dvec2& half, int segments) const {
     const glm::dvec3 p(centre, 1.0);
     const int degree = 2 * m_order;
-    // Per edge and slefe piece: +1 provably positive, -1 provably negative, 0 unknown. A piece is
-    // provably of one sign when both its ends are (the enclosures are linear between them).
-    std::array<std::array<int, Slefe::kMaxSegments>, 3> sign{};
+    // Per piece: whether some edge is provably positive on it, and whether some edge is
+    // provably negative. A piece is provably of one sign when both its ends are (the
+    // enclosures are linear between them).
+    PieceMask positive = 0, negative = 0;
     for (std::size_t e = 0; e < 3; ++e) {
         Bernstein lower, upper;
         lower.degree = upper.degree = degree;
@@ -67,21 +69,60 @@ bool CurvedTriangle::missesRectangle(const glm::dvec2& centre, const glm::dvec2&
             const double value = glm::dot(c, p), pad = std::abs(c.x) * half.x + std::abs(c.y) * half.y;
             lower.coefficients[std::size_t(k)] = value - pad, upper.coefficients[std::size_t(k)] = value + pad;
         }
-        const Slefe below = slefeOf(lower, slefeSegments), above = slefeOf(upper, slefeSegments);
-        for (int i = 0; i < slefeSegments; ++i) {
+        const Slefe below = slefeOf(lower, segments), above = slefeOf(upper, segments);
+        for (int i = 0; i < segments; ++i) {
             const std::size_t a = std::size_t(i), b = std::size_t(i + 1);
-            if (below.lower[a] > 0.0 && below.lower[b] > 0.0) sign[e][a] = 1;
-            else if (above.upper[a] < 0.0 && above.upper[b] < 0.0) sign[e][a] = -1;
+            if (below.lower[a] > 0.0 && below.lower[b] > 0.0) positive |= PieceMask(1) << i;
+            else if (above.upper[a] < 0.0 && above.upper[b] < 0.0) negative |= PieceMask(1) << i;
         }
     }
-    int culled = 0;
-    for (std::size_t i = 0; i < std::size_t(slefeSegments); ++i) {
-        const bool hasPositive = sign[0][i] > 0 || sign[1][i] > 0 || sign[2][i] > 0;
-        const bool hasNegative = sign[0][i] < 0 || sign[1][i] < 0 || sign[2][i] < 0;
-        culled += hasPositive && hasNegative;
+    return positive & negative;
+}
+
+CurvedTriangle::FrustumSlefes CurvedTriangle::frustumSlefes(int segments) const {
+    FrustumSlefes s;
+    s.segments = segments;
+    for (std::size_t i = 0; i < 3; ++i) {
+        std::array<Bernstein, 4> distance;
+        for (Bernstein& d : distance) d.degree = m_order;
+        for (int k = 0; k <= m_order; ++k) {
+            const glm::dvec3& c = m_control[i][std::size_t(k)];
+            const std::size_t j = std::size_t(k);
+            distance[0].coefficients[j] = c.x + c.z, distance[1].coefficients[j] = c.x - c.z;
+            distance[2].coefficients[j] = c.y + c.z, distance[3].coefficients[j] = c.y - c.z;
+        }
+        for (std::size_t plane = 0; plane < 4; ++plane) s.corner[i][plane] = slefeOf(distance[plane], segments);
     }
-    if (culledPieces) *culledPieces += culled;
-    return culled == slefeSegments;
+    return s;
+}
+
+CurvedTriangle::PieceMask CurvedTriangle::piecesMissedByCorners(const FrustumSlefes& slefes, const glm::dvec2& centre, const glm::dvec2& half) {
+    PieceMask missed = 0;
+    for (int axis = 0; axis < 2; ++axis) {
+        const double low = centre[axis] - half[axis], high = centre[axis] + half[axis];
+        const std::size_t plus = std::size_t(2 * axis), minus = plus + 1;  // x + w, x - w (or y)
+        // Outside the low side: x - low w < 0, an upper bound below zero. Outside the high side:
+        // high w - x < 0, i.e. x - high w > 0, a lower bound above zero.
+        for (int side = 0; side < 2; ++side) {
+            const double a = side == 0 ? low : high;
+            if (!(a >= -1.0 && a <= 1.0)) continue;
+            const double toPlus = 0.5 * (1.0 - a), toMinus = 0.5 * (1.0 + a);
+            for (int piece = 0; piece < slefes.segments; ++piece) {
+                bool outside = true;
+                for (std::size_t i = 0; i < 3 && outside; ++i) {
+                    const Slefe& p = slefes.corner[i][plus];
+                    const Slefe& m = slefes.corner[i][minus];
+                    for (const int end : {piece, piece + 1}) {
+                        const std::size_t e = std::size_t(end);
+                        if (side == 0 ? toPlus * p.upper[e] + toMinus * m.upper[e] >= 0.0 : toPlus * p.lower[e] + toMinus * m.lower[e] <= 0.0)
+                            outside = false;
+                    }
+                }
+                if (outside) missed |= PieceMask(1) << piece;
+            }
+        }
+    }
+    return missed;
 }
 
 int CurvedTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, RootSolver solver,

@@ -9,6 +9,7 @@
 #include <glm/vec4.hpp>
 
 #include <array>
+#include <cstdint>
 #include <optional>
 
 namespace streak::raster {
@@ -53,15 +54,35 @@ public:
     int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, RootSolver solver,
                     std::array<double, kMaxSpanBounds>& bounds, BernsteinRootCounts* counts = nullptr) const;
 
+    // A bit per slefe piece of the shutter: bit i is piece [i, i + 1] / segments.
+    using PieceMask = std::uint32_t;
+    static PieceMask allPieces(int segments) { return (PieceMask(1) << segments) - 1; }
+
     // The Edge-Tile test of Gribel et al. 2013, for a rectangle (NDC centre and half extents):
     // each edge function over the rectangle lies between its value at the centre with every
     // control coefficient padded down or up by |c_k.x| hx + |c_k.y| hy (it is linear in the
     // point), and those two polynomials between their slefes. On a piece of the shutter where
     // one edge is provably positive and another provably negative, no point of the rectangle
-    // is inside (inside means all three of one sign, either orientation). True when that
-    // holds on every piece: the triangle misses the rectangle for the whole shutter. Adds the
-    // pieces it proves missed (the culled time spans) to *culledPieces when given.
-    bool missesRectangle(const glm::dvec2& centre, const glm::dvec2& half, int slefeSegments = 4, int* culledPieces = nullptr) const;
+    // is inside (inside means all three of one sign, either orientation). Returns the pieces
+    // it proves missed.
+    PieceMask piecesMissedByEdges(const glm::dvec2& centre, const glm::dvec2& half, int segments) const;
+
+    // The Triangle-Tile test's setup (Gribel et al. 2013): slefes of each corner's signed
+    // distance to the frustum planes x = -w, x = w, y = -w and y = w, i.e. of x + w, x - w,
+    // y + w and y - w. A tile plane x = a w with a in [-1, 1] blends the first two,
+    // x - a w = (1 - a) / 2 (x + w) + (1 + a) / 2 (x - w), and a blend with non-negative
+    // weights of enclosures encloses the blend: the bounds for every tile come from these.
+    struct FrustumSlefes {
+        int segments = 0;
+        std::array<std::array<Slefe, 4>, 3> corner;  ///< corner i: x + w, x - w, y + w, y - w
+    };
+    FrustumSlefes frustumSlefes(int segments) const;
+    // The Triangle-Tile test: the pieces of the shutter on which all three corners lie outside
+    // one plane of the frustum through the rectangle's sides. In homogeneous coordinates the
+    // triangle is the convex hull of its corners, so it lies outside that plane too, and no
+    // visible point of it (w > 0) projects into the rectangle. The rectangle lies within the
+    // viewport (|ndc| <= 1); a side outside it proves nothing.
+    static PieceMask piecesMissedByCorners(const FrustumSlefes& slefes, const glm::dvec2& centre, const glm::dvec2& half);
 
 private:
     int m_order;

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -137,32 +138,110 @@ TEST(CurvedTriangle, RotatingWedgeCoversASampleForTheClosedFormFraction) {
     EXPECT_GT(std::abs(coveredFraction(1) - 1.0 / 3.0), 0.03);  // linear motion: the chord
 }
 
-TEST(CurvedTriangle, EdgeTileTestNeverCullsACoveredRectangle) {
-    // Random quadratic triangles and rectangles: where missesRectangle says missed, no point of
-    // a 5 x 5 grid over the rectangle is inside at any of 64 times (point-in-triangle); and it
-    // does cull (a test that cannot cull proves nothing).
-    Rng rng(31);
-    int culled = 0, kept = 0;
-    for (int i = 0; i < 400; ++i) {
-        std::array<std::array<glm::vec2, 4>, 3> path{};
-        for (auto& corner : path)
-            for (int j = 0; j <= 2; ++j) corner[std::size_t(j)] = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f)};
-        const CurvedTriangle curved(2, atW1(path, 2));
-        const glm::dvec2 centre(rng.uniform(-1.2f, 1.2f), rng.uniform(-1.2f, 1.2f)), half(rng.uniform(0.01f, 0.2f), rng.uniform(0.01f, 0.2f));
-        if (!curved.missesRectangle(centre, half)) {
-            ++kept;
-            continue;
+namespace {
+
+// Whether some point of a 5 x 5 grid over the rectangle is inside the triangle at one of 16
+// times spread over piece `piece` of 4 of the shutter.
+bool coversDuringPiece(const CurvedTriangle& curved, int piece, const glm::dvec2& centre, const glm::dvec2& half) {
+    for (int k = 0; k < 16; ++k)
+        for (int a = 0; a < 5; ++a)
+            for (int b = 0; b < 5; ++b)
+                if (pointInTriangle(curved, (piece + (k + 0.5) / 16.0) / 4.0, centre + half * glm::dvec2(a / 2.0 - 1.0, b / 2.0 - 1.0)) > 0)
+                    return true;
+    return false;
+}
+
+// A random quadratic triangle with perspective (w in [0.5, 2]) whose corners lie within
+// `size` of a centre that swings across the screen.
+CurvedTriangle randomCurvedTriangle(Rng& rng, float size) {
+    std::array<glm::vec4, 3> centre;
+    for (glm::vec4& c : centre) c = {rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.0f, 1.0f};
+    Corners corners{};
+    for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = 0; j < 3; ++j) {
+            const float w = rng.uniform(0.5f, 2.0f);
+            const glm::vec2 xy = glm::vec2(centre[j]) + glm::vec2(rng.uniform(-size, size), rng.uniform(-size, size));
+            corners[i][j] = glm::vec4(xy * w, 0.0f, w);
         }
-        ++culled;
-        for (int k = 0; k < 64; ++k)
-            for (int a = 0; a < 5; ++a)
-                for (int b = 0; b < 5; ++b) {
-                    const glm::dvec2 p = centre + half * glm::dvec2(a / 2.0 - 1.0, b / 2.0 - 1.0);
-                    EXPECT_LT(pointInTriangle(curved, (k + 0.5) / 64.0, p), 1) << "triangle " << i;
-                }
+    return CurvedTriangle(2, corners);
+}
+
+}  // namespace
+
+TEST(CurvedTriangle, TileTestsNeverCullACoveredPiece) {
+    // Random quadratic triangles in perspective, large and small, and rectangles within the
+    // viewport: on each quarter of the shutter that the Edge-Tile or the Triangle-Tile test
+    // proves missed, no point of a 5 x 5 grid over the rectangle is inside at 16 times of it
+    // (point-in-triangle). And each test culls pieces (a test that cannot cull proves nothing).
+    Rng rng(31);
+    int byEdges = 0, byCorners = 0, kept = 0;
+    for (int i = 0; i < 600; ++i) {
+        const CurvedTriangle curved = randomCurvedTriangle(rng, i % 2 == 0 ? 1.0f : 0.05f);
+        const CurvedTriangle::FrustumSlefes frustum = curved.frustumSlefes(4);
+        const glm::dvec2 half(rng.uniform(0.01f, 0.2f), rng.uniform(0.01f, 0.2f));
+        const glm::dvec2 centre(rng.uniform(-1.0f, 1.0f) * (1.0 - half.x), rng.uniform(-1.0f, 1.0f) * (1.0 - half.y));
+        const CurvedTriangle::PieceMask edges = curved.piecesMissedByEdges(centre, half, 4);
+        const CurvedTriangle::PieceMask corners = CurvedTriangle::piecesMissedByCorners(frustum, centre, half);
+        for (int piece = 0; piece < 4; ++piece) {
+            const bool isEdgeCulled = edges >> piece & 1, isCornerCulled = corners >> piece & 1;
+            byEdges += isEdgeCulled, byCorners += isCornerCulled;
+            if (!isEdgeCulled && !isCornerCulled) {
+                ++kept;
+                continue;
+            }
+            EXPECT_FALSE(coversDuringPiece(curved, piece, centre, half)) << "triangle " << i << " piece " << piece << " edges " << isEdgeCulled;
+        }
     }
-    EXPECT_GT(culled, 50);
-    EXPECT_GT(kept, 50);
+    EXPECT_GT(byEdges, 200);
+    EXPECT_GT(byCorners, 200);
+    EXPECT_GT(kept, 200);
+}
+
+TEST(CurvedTriangle, TriangleTileTestCullsSmallFastTrianglesTheEdgeTestKeeps) {
+    // Gribel et al.'s reason for two tests: a small triangle sweeping far past a tile has edge
+    // functions whose padding swamps their values, so the Edge-Tile test proves little, while
+    // its corners are provably outside one tile plane.
+    Rng rng(7);
+    int onlyByCorners = 0, onlyByEdges = 0;
+    for (int i = 0; i < 400; ++i) {
+        const CurvedTriangle curved = randomCurvedTriangle(rng, 0.01f);
+        const glm::dvec2 half(0.02, 0.02), centre(rng.uniform(-0.9f, 0.9f), rng.uniform(-0.9f, 0.9f));
+        const CurvedTriangle::PieceMask edges = curved.piecesMissedByEdges(centre, half, 4);
+        const CurvedTriangle::PieceMask corners = CurvedTriangle::piecesMissedByCorners(curved.frustumSlefes(4), centre, half);
+        onlyByCorners += std::popcount(corners & ~edges), onlyByEdges += std::popcount(edges & ~corners);
+    }
+    EXPECT_GT(onlyByCorners, 10 * std::max(onlyByEdges, 1));
+}
+
+TEST(CurvedTriangle, CornerBoundsAtATilePlaneEncloseTheDistance) {
+    // The blend of the frustum planes' slefes (x - a w from x + w and x - w) encloses each
+    // corner's distance to the plane x = a w (and y = a w) at 1000 times.
+    Rng rng(11);
+    for (int i = 0; i < 50; ++i) {
+        const CurvedTriangle curved = randomCurvedTriangle(rng, 0.5f);
+        const CurvedTriangle::FrustumSlefes s = curved.frustumSlefes(4);
+        const double a = rng.uniform(-1.0f, 1.0f);
+        for (int k = 0; k <= 1000; ++k) {
+            const double u = k / 1000.0, position = u * 4.0;
+            const int piece = std::min(3, int(position));
+            const double f = position - piece;
+            for (std::size_t corner = 0; corner < 3; ++corner) {
+                const glm::dvec3 c = curved.corner(int(corner), u);
+                for (int axis = 0; axis < 2; ++axis) {
+                    const Slefe& plus = s.corner[corner][std::size_t(2 * axis)];
+                    const Slefe& minus = s.corner[corner][std::size_t(2 * axis + 1)];
+                    const auto at = [&](const std::array<double, Slefe::kMaxSegments + 1>& p, const std::array<double, Slefe::kMaxSegments + 1>& m) {
+                        const double left = 0.5 * (1 - a) * p[std::size_t(piece)] + 0.5 * (1 + a) * m[std::size_t(piece)];
+                        const double right = 0.5 * (1 - a) * p[std::size_t(piece + 1)] + 0.5 * (1 + a) * m[std::size_t(piece + 1)];
+                        return left + f * (right - left);
+                    };
+                    const double distance = c[axis] - a * c.z;
+                    EXPECT_LE(at(plus.lower, minus.lower), distance + 1e-12);
+                    EXPECT_GE(at(plus.upper, minus.upper), distance - 1e-12);
+                }
+            }
+        }
+    }
 }
 
 }  // namespace streak::raster

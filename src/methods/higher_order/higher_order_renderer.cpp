@@ -12,6 +12,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -26,7 +27,7 @@ using exposure::ExposureInterval;
 
 constexpr int kTileSize = 16;
 constexpr int kMaxDepthSplits = 4;  ///< refined depth: levels of halving per span
-constexpr int kTilePieces = 4;      ///< TILE: slefe pieces of the shutter per block test
+constexpr int kTilePieces = 8;      ///< TILE: slefe pieces of the shutter per block test
 
 enum class Traversal { BoundingBox, Interval, Tile };
 
@@ -51,7 +52,7 @@ struct Record {
 
 struct Counters {
     std::int64_t coverageTests = 0, coverageHits = 0, culledBackFacing = 0, depthSplits = 0, pixelsSkipped = 0, blockTests = 0,
-                 blocksCulled = 0, timePiecesTested = 0, timePiecesCulled = 0;
+                 blocksCulled = 0, blocksCulledByCorners = 0, timePiecesTested = 0, timePiecesCulled = 0, timePiecesCulledByCorners = 0;
     raster::BernsteinRootCounts roots;
     double intervalSeconds = 0;
     exposure::SampleResolveCounters resolve;
@@ -111,7 +112,9 @@ public:
             total.coverageTests += c.coverageTests, total.coverageHits += c.coverageHits, total.culledBackFacing += c.culledBackFacing;
             total.depthSplits += c.depthSplits, total.pixelsSkipped += c.pixelsSkipped;
             total.blockTests += c.blockTests, total.blocksCulled += c.blocksCulled;
+            total.blocksCulledByCorners += c.blocksCulledByCorners;
             total.timePiecesTested += c.timePiecesTested, total.timePiecesCulled += c.timePiecesCulled;
+            total.timePiecesCulledByCorners += c.timePiecesCulledByCorners;
             total.roots.add(c.roots);
             total.intervalSeconds += c.intervalSeconds;
             total.resolve.add(c.resolve);
@@ -130,9 +133,12 @@ public:
         stats.setCounter("pixels_skipped_by_intervals", double(total.pixelsSkipped));
         stats.setCounter("tile_tests", double(total.blockTests));
         stats.setCounter("tiles_culled", double(total.blocksCulled));
-        // TILE's culled time spans: the share of the blocks' slefe pieces of the shutter proved missed.
-        stats.setCounter("tile_time_culled_fraction",
-                         total.timePiecesTested > 0 ? double(total.timePiecesCulled) / double(total.timePiecesTested) : 0.0);
+        stats.setCounter("tiles_culled_by_triangle_test", double(total.blocksCulledByCorners));
+        // TILE's culled time spans: the share of the blocks' slefe pieces of the shutter proved
+        // missed (by either test), and by the Triangle-Tile test alone.
+        const auto share = [&](std::int64_t pieces) { return total.timePiecesTested > 0 ? double(pieces) / double(total.timePiecesTested) : 0.0; };
+        stats.setCounter("tile_time_culled_fraction", share(total.timePiecesCulled));
+        stats.setCounter("tile_time_culled_by_triangle_test", share(total.timePiecesCulledByCorners));
         stats.setCounter("roots_solves", double(total.roots.solves));
         stats.setCounter("roots_no_sign_change", double(total.roots.noSignChange));
         stats.setCounter("roots_found", double(total.roots.roots));
@@ -215,6 +221,28 @@ private:
         emit(u0, d0, u1, d1);
     }
 
+    // TILE: whether the block of pixels [bx, bx1] x [by, by1] (its samples lie in
+    // [bx, bx1 + 1) x [by, by1 + 1)) is missed for the whole shutter, each piece of it proved
+    // missed by the Triangle-Tile test or the Edge-Tile test. The cheap Triangle-Tile test
+    // goes first; the Edge-Tile test runs only while pieces remain.
+    static bool isBlockMissed(const raster::CurvedTriangle& curved, const raster::CurvedTriangle::FrustumSlefes& frustum, int bx, int by,
+                              int bx1, int by1, int width, int height, Counters& counters) {
+        using Mask = raster::CurvedTriangle::PieceMask;
+        ++counters.blockTests;
+        const glm::dvec2 lo = raster::ndcFromRaster(bx, by1 + 1, width, height), hi = raster::ndcFromRaster(bx1 + 1, by, width, height);
+        const glm::dvec2 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+        const Mask all = raster::CurvedTriangle::allPieces(kTilePieces);
+        const Mask byCorners = raster::CurvedTriangle::piecesMissedByCorners(frustum, centre, half);
+        const Mask missed = byCorners == all ? all : byCorners | curved.piecesMissedByEdges(centre, half, kTilePieces);
+        counters.timePiecesTested += kTilePieces;
+        counters.timePiecesCulled += std::popcount(missed);
+        counters.timePiecesCulledByCorners += std::popcount(byCorners);
+        if (missed != all) return false;
+        ++counters.blocksCulled;
+        counters.blocksCulledByCorners += byCorners == all;
+        return true;
+    }
+
     // Whether generalized INTERVAL lets segment `index` reach pixel (px, py) at all.
     static bool isInSomeBox(const Frame& frame, std::uint32_t index, int px, int py) {
         if (frame.numBoxes == 1) return true;
@@ -246,22 +274,15 @@ private:
                                              std::min(box.y1, rect.y1)};
             if (region.empty()) continue;
             const raster::CurvedTriangle& curved = exposure::curvedTriangleOf(geometry, index, scratch.curved);
-            const int block = frame.options.traversal == Traversal::Tile ? frame.options.tilePixels : std::max(tileWidth, tileHeight);
+            const bool isTile = frame.options.traversal == Traversal::Tile;
+            const int block = isTile ? frame.options.tilePixels : std::max(tileWidth, tileHeight);
+            // TILE: the Triangle-Tile test's corner slefes, once per segment and tile.
+            std::optional<raster::CurvedTriangle::FrustumSlefes> frustum;
+            if (isTile) frustum = curved.frustumSlefes(kTilePieces);
             for (int by = region.y0; by <= region.y1; by += block)
                 for (int bx = region.x0; bx <= region.x1; bx += block) {
                     const int bx1 = std::min(bx + block - 1, region.x1), by1 = std::min(by + block - 1, region.y1);
-                    if (frame.options.traversal == Traversal::Tile) {
-                        // TILE: the block's samples lie in [bx, bx1 + 1) x [by, by1 + 1).
-                        ++counters.blockTests;
-                        const glm::dvec2 lo = raster::ndcFromRaster(bx, by1 + 1, width, height), hi = raster::ndcFromRaster(bx1 + 1, by, width, height);
-                        int culledPieces = 0;
-                        const bool isMissed = curved.missesRectangle(0.5 * (lo + hi), 0.5 * (hi - lo), kTilePieces, &culledPieces);
-                        counters.timePiecesTested += kTilePieces, counters.timePiecesCulled += culledPieces;
-                        if (isMissed) {
-                            ++counters.blocksCulled;
-                            continue;
-                        }
-                    }
+                    if (isTile && isBlockMissed(curved, *frustum, bx, by, bx1, by1, width, height, counters)) continue;
                     for (int py = by; py <= by1; ++py)
                         for (int px = bx; px <= bx1; ++px) {
                             if (!isInSomeBox(frame, index, px, py)) {

@@ -21,12 +21,15 @@ namespace streak {
 // - traversal: bbox (the box of every control point), interval (default: the boxes of
 //   `intervals` equal sub-intervals of the shutter, each from its subdivided control points;
 //   a sample is tested only inside one of them) or tile (the box, in blocks of `tile` pixels,
-//   each culled when the Edge-Tile test of slefes of the padded edge equations proves it
-//   missed for the whole shutter). Each skips only samples the triangle never covers: the
-//   spans, and so the image, are the same.
+//   each culled when, on every eighth of the shutter, the Triangle-Tile test (slefes of the
+//   corners' distances to the block's frustum planes) or the Edge-Tile test (slefes of the
+//   padded edge equations) proves it missed). Each skips only samples the triangle never
+//   covers: the spans, and so the image, are the same.
 // - intervals: sub-intervals of generalized INTERVAL, 1 to 64 (8).
-// - tile: TILE's block side in pixels, 1, 2 or 4 (2). Stats tiles_culled, and
-//   tile_time_culled_fraction: the share of the blocks' quarters of the shutter proved missed.
+// - tile: TILE's block side in pixels, 1, 2 or 4 (2). Stats tiles_culled (of them
+//   tiles_culled_by_triangle_test by the Triangle-Tile test alone), and
+//   tile_time_culled_fraction: the share of the blocks' eighths of the shutter proved missed
+//   (tile_time_culled_by_triangle_test: by the Triangle-Tile test).
 // - solver: closed-form (default; Ferrari for quartics) or clipping (Bezier clipping).
 // - camera-order: order of the clip-space curves fitted to a moving camera's paths (3).
 // - depth-tolerance: refined depth splits an interval while its linear depth at mid-span is

@@ -92,7 +92,10 @@ TEST(HigherOrderRenderer, IntervalAndTileTraversalLeaveTheImageBitIdentical) {
                 for (int y = 0; y < 60; ++y)
                     for (int x = 0; x < 80; ++x) ASSERT_EQ(a.at(x, y), b.at(x, y)) << x << "," << y;
                 EXPECT_LT(culled.counter("coverage_tests"), box.counter("coverage_tests"));
-                if (isTile) EXPECT_GT(culled.counter("tile_time_culled_fraction"), 0.0);
+                if (isTile) {
+                    EXPECT_GT(culled.counter("tile_time_culled_fraction"), 0.0);
+                    EXPECT_GT(culled.counter("tiles_culled_by_triangle_test"), 0.0);
+                }
                 EXPECT_GT(culled.counter("sample_test_efficiency"), box.counter("sample_test_efficiency"));
             }
         }
