@@ -10,13 +10,17 @@ compared (PSNR between them: inf when the change is exact).
 
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
-Section memory: peak resident memory of each method on each scene (the process's maxrss).
+Section memory: peak resident memory of each method (the process's maxrss) on the two cases
+above, on every built-in scene at 1024x768, and on the 1M-triangle MetalRoughSpheresNoTextures.
+
+Section resolution: render time of each method on builtin:cubes from 256x192 to 1920x1080, and
+per megapixel (cost linear in pixels: a flat column); --plot DIR draws DIR/speed_resolution.png.
 
 Profiles of the hot functions come from perf (Debian's linux-perf), not from this script:
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,threads,memory] [--repeats 3]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,threads,memory,resolution] [--repeats 3] [--plot docs]
 """
 import argparse
 import json
@@ -36,6 +40,11 @@ CASES = [
                                           "--camera-pos-end=-0.02,0.025,0.055", "--fov", "40", "--width", "320", "--height", "240",
                                           "--aa", "2"]),
 ]
+BUILTIN = ["cubes", "rotating-cube", "spin", "clothball", "sphere", "crossing", "twist", "fence", "pan", "translucent"]
+SPHERES = os.path.join(SHARED, "MetalRoughSpheresNoTextures", "glTF-Binary", "MetalRoughSpheresNoTextures.glb")
+MEMORY_CASES = CASES + [(f"{n} 1024x768", [f"builtin:{n}", "--width", "1024", "--height", "768"]) for n in BUILTIN[1:]] + [
+    ("MetalRoughSpheresNoTextures (1,040,213 triangles) 1024x768", [SPHERES, "--width", "1024", "--height", "768"])]
+SIZES = [(256, 192), (512, 384), (1024, 768), (1920, 1080)]
 METHODS = [("motion-path", []), ("analytic", []), ("accumulation 64", ["-m", "accumulation", "--samples", "64"])]
 
 
@@ -114,7 +123,7 @@ def memory(args, tmp):
     print("### Peak memory (MiB resident, the whole process)\n")
     print("| scene | " + " | ".join(m for m, _ in METHODS) + " |")
     print("|---|" + "---:|" * len(METHODS))
-    for case, case_args in CASES:
+    for case, case_args in MEMORY_CASES:
         if not os.path.exists(case_args[0]) and not case_args[0].startswith("builtin:"):
             continue
         cells = [f"{run(args.streak, case_args, method_args(m, e), os.path.join(tmp, 'm.exr'), os.path.join(tmp, 's.json'))[1]:.0f}"
@@ -123,15 +132,50 @@ def memory(args, tmp):
     print()
 
 
+def resolution(args, tmp):
+    print("### Resolution (builtin:cubes, render ms, least of the repeats; in brackets ms per megapixel)\n")
+    print("| size | " + " | ".join(m for m, _ in METHODS) + " |")
+    print("|---|" + "---:|" * len(METHODS))
+    times = {m: [] for m, _ in METHODS}
+    for w, h in SIZES:
+        cells = []
+        for method, extra in METHODS:
+            ms = min(run(args.streak, ["builtin:cubes", "--width", str(w), "--height", str(h)], method_args(method, extra),
+                         os.path.join(tmp, "r.exr"), os.path.join(tmp, "s.json"))[0]["time_ms"]["render"] for _ in range(args.repeats))
+            times[method].append(ms)
+            cells.append(f"{ms:.0f} ({ms / (w * h / 1e6):.0f})")
+        print(f"| {w}x{h} | " + " | ".join(cells) + " |", flush=True)
+    print()
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        pixels = [w * h / 1e6 for w, h in SIZES]
+        fig, ax = plt.subplots(figsize=(5.5, 4))
+        for method, ms in times.items():
+            ax.plot(pixels, ms, "o-", label=method)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("megapixels (256x192 ... 1920x1080)")
+        ax.set_ylabel("render ms (2 cores)")
+        ax.set_title("builtin:cubes: time against pixels")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.plot, "speed_resolution.png"), dpi=100)
+        plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--streak", default="build/streak")
     parser.add_argument("--baseline", default="")
-    parser.add_argument("--sections", default="profile,threads,memory")
+    parser.add_argument("--sections", default="profile,threads,memory,resolution")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "threads": threads, "memory": memory}
+    sections = {"profile": profile, "threads": threads, "memory": memory, "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):
             sections[name](args, tmp)
