@@ -21,7 +21,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import SCENES, machine, run_sections  # noqa: E402
+from benchlib import SCENES, machine, pyplot, run_sections  # noqa: E402
 
 
 def quality(streak):
@@ -62,9 +62,7 @@ def compression(streak, plot):
                   flush=True)
     print()
     if plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.6))
         labels = [str(k) if k else "all" for k in budgets]
         for name, rows in curves.items():

@@ -70,6 +70,14 @@ def equal_quality_count(streak, scene, method, ref, target, ladder=LADDER, size=
     return hi, psnr_at(hi), out
 
 
+def pyplot():
+    """matplotlib.pyplot on the file-only Agg backend (no display on the bench machines)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
 def machine():
     cpu = "unknown CPU"
     if os.path.exists("/proc/cpuinfo"):

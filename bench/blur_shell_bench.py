@@ -23,7 +23,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import run_sections  # noqa: E402
+from benchlib import pyplot, run_sections  # noqa: E402
 
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
 MODELS = [
@@ -103,10 +103,8 @@ def sheet(streak, args):
         print(f"| {length} s | " + " | ".join(cells) + f" | {acc_ms:.0f} | {shell_ms:.0f} |", flush=True)
     print()
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
+        plt = pyplot()
         import matplotlib.image as mpimg
-        import matplotlib.pyplot as plt
         cols = len(SHEET_SUBDIVISIONS) + 1
         fig, axes = plt.subplots(len(LENGTHS), cols, figsize=(2.6 * cols, 2.05 * len(LENGTHS)))
         for r, length in enumerate(LENGTHS):

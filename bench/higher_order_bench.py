@@ -30,7 +30,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import run_sections  # noqa: E402
+from benchlib import pyplot, run_sections  # noqa: E402
 
 CURVED = ["spin", "clothball", "rotating-cube?speed=4"]
 MODERATE = ["spin?angle=90", "clothball?angle=90", "rotating-cube?speed=2"]  # quality only: the paper's 90 degrees
@@ -86,13 +86,6 @@ def quality(streak, args):
         fig.tight_layout()
         fig.savefig(os.path.join(args.plot, "higher_order_quality.png"), dpi=90)
         plt.close(fig)
-
-
-def pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
 
 
 MODELS = [

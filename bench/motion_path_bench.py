@@ -21,7 +21,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import LADDER, SCENES, equal_quality_count, machine, run_sections  # noqa: E402
+from benchlib import LADDER, SCENES, equal_quality_count, machine, pyplot, run_sections  # noqa: E402
 
 
 def quality(streak):
@@ -59,9 +59,7 @@ def sweep(streak, plot):
               f"{int(c['intervals_per_sample_max'])} | {int(c['interval_splits'])} | {on['time_ms']['sort']:.0f} |", flush=True)
     print()
     if plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         fig, (a, b) = plt.subplots(1, 2, figsize=(10, 3.8))
         ns = [r[0] for r in rows]
         a.plot(ns, [r[1] for r in rows], "o-", label="sort on")

@@ -27,7 +27,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import Streak, machine  # noqa: E402
+from benchlib import Streak, machine, pyplot  # noqa: E402
 
 BUILTIN = ["cubes", "rotating-cube", "spin", "clothball", "sphere", "crossing", "twist", "fence", "pan", "translucent"]
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
@@ -124,9 +124,7 @@ def report(name, rows, plot_dir, size):
         print(f"| {target:.0f} dB (ratio to the fastest peer) | " + " | ".join(cells) + " |")
     print(flush=True)
     if plot_dir:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         fig, ax = plt.subplots(figsize=(6, 4))
         for method in SETTINGS:
             pts = sorted((ms, db) for m, _, ms, db in rows if m == method)
@@ -163,10 +161,8 @@ def failures(streak, size, plot_dir):
         print(f"| {name} | " + " | ".join(cells) + " |", flush=True)
     print()
     if plot_dir:
-        import matplotlib
-        matplotlib.use("Agg")
+        plt = pyplot()
         import matplotlib.image as mpimg
-        import matplotlib.pyplot as plt
         titles = ["accumulation 3000", "post-filter", "analytic", "one instant (t = 0.5)"]
         fig, axes = plt.subplots(len(images), 4, figsize=(11, 2.2 * len(images)))
         for r, (name, row, cells) in enumerate(images):

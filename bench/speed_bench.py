@@ -30,7 +30,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import machine  # noqa: E402
+from benchlib import machine, pyplot  # noqa: E402
 
 SHARED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
 TOYCAR = os.path.join(SHARED, "ToyCar", "glTF", "ToyCar.gltf")
@@ -147,9 +147,7 @@ def resolution(args, tmp):
         print(f"| {w}x{h} | " + " | ".join(cells) + " |", flush=True)
     print()
     if args.plot:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         pixels = [w * h / 1e6 for w, h in SIZES]
         fig, ax = plt.subplots(figsize=(5.5, 4))
         for method, ms in times.items():

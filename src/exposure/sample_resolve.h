@@ -42,8 +42,8 @@ struct SampleResolveScratch {
 // The colour of one pixel sample from its exposure intervals (Gribel et al. 2010), for every
 // method that finds them: shade what must be known before the resolve (translucent opacity;
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
-// exactly over time (dropping first what is wholly hidden), then shade each visible piece once (abutting whole pieces of a triangle
-// merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
+// exactly over time (dropping first what is wholly hidden), then shade each visible piece once
+// (abutting whole pieces of a triangle merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
 // and shade(triangle, t0, t1) -> ShadedColor; exactDepth, when given, measures the linear
 // depths' misordering (resolveOpaque). Shares are of the sample row's exposure, `window`.
 template <class TriangleOf, class IsTranslucent, class Shade>

@@ -97,29 +97,29 @@ CurvedTriangle::FrustumSlefes CurvedTriangle::frustumSlefes(int segments) const 
 }
 
 CurvedTriangle::PieceMask CurvedTriangle::piecesMissedByCorners(const FrustumSlefes& slefes, const glm::dvec2& centre, const glm::dvec2& half) {
+    const int segments = slefes.segments;
     PieceMask missed = 0;
     for (int axis = 0; axis < 2; ++axis) {
-        const double low = centre[axis] - half[axis], high = centre[axis] + half[axis];
         const std::size_t plus = std::size_t(2 * axis), minus = plus + 1;  // x + w, x - w (or y)
-        // Outside the low side: x - low w < 0, an upper bound below zero. Outside the high side:
-        // high w - x < 0, i.e. x - high w > 0, a lower bound above zero.
-        for (int side = 0; side < 2; ++side) {
-            const double a = side == 0 ? low : high;
+        for (const bool isHighSide : {false, true}) {
+            const double a = centre[axis] + (isHighSide ? half[axis] : -half[axis]);
             if (!(a >= -1.0 && a <= 1.0)) continue;
             const double toPlus = 0.5 * (1.0 - a), toMinus = 0.5 * (1.0 + a);
-            for (int piece = 0; piece < slefes.segments; ++piece) {
-                bool outside = true;
-                for (std::size_t i = 0; i < 3 && outside; ++i) {
+            // Outside the low side: x - a w < 0, an upper bound below zero; outside the high
+            // side: x - a w > 0, a lower bound above zero. Bit e: all three corners are outside
+            // at breakpoint e; a piece is outside where both its ends are.
+            PieceMask outside = 0;
+            for (int e = 0; e <= segments; ++e) {
+                bool allOutside = true;
+                for (std::size_t i = 0; i < 3 && allOutside; ++i) {
                     const Slefe& p = slefes.corner[i][plus];
                     const Slefe& m = slefes.corner[i][minus];
-                    for (const int end : {piece, piece + 1}) {
-                        const std::size_t e = std::size_t(end);
-                        if (side == 0 ? toPlus * p.upper[e] + toMinus * m.upper[e] >= 0.0 : toPlus * p.lower[e] + toMinus * m.lower[e] <= 0.0)
-                            outside = false;
-                    }
+                    const std::size_t k = std::size_t(e);
+                    allOutside = isHighSide ? toPlus * p.lower[k] + toMinus * m.lower[k] > 0.0 : toPlus * p.upper[k] + toMinus * m.upper[k] < 0.0;
                 }
-                if (outside) missed |= PieceMask(1) << piece;
+                if (allOutside) outside |= PieceMask(1) << e;
             }
+            missed |= outside & (outside >> 1) & allPieces(segments);
         }
     }
     return missed;

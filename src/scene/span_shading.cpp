@@ -119,9 +119,8 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const float pathTexels = std::max(a.x + b.x, a.y + b.y);
     const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
     const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
-    // The level the path's length asks for (k taps along it), and never below level 0, the
-    // instant's floor: a point that does not move shades as at one instant, even magnified.
-    const float pathLod = std::max(0.0f, std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f)));
+    // The level the path's length asks for (k taps along it; the lookup keeps level 0 as floor).
+    const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
     // The footprint moves along the span with the surface: quadratic through its three ends.
     const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);
     const QuadraticThrough<glm::vec2> duvdyAt(ends[0].duvdy, ends[1].duvdy, ends[2].duvdy);

@@ -166,7 +166,7 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
-    const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(footprint.minLod));
+    const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(std::max(footprint.minLod, 0.0f)));
     const int taps = std::clamp(int(std::ceil(e.major / width - 1e-3f)), 1, kMaxAnisotropy);
     const float lod = width > 0.0f ? std::log2(width) : 0.0f;
     if (taps == 1) return trilinearAt(uv, lod);

@@ -15,7 +15,9 @@ enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 
 // The area of a texture one lookup integrates: the uv change over one sample spacing right and
 // down, and a level of detail not to go below (span shading's tap spacing along a uv path).
-// The default, no area, is a bilinear tap of level 0.
+// Level 0 is the floor whatever minLod says: a tap narrower than a texel filters nothing more,
+// and a span of a still point must shade as its instant does. The default, no area, is a
+// bilinear tap of level 0.
 struct TextureFootprint {
     glm::vec2 duvdx{0.0f};
     glm::vec2 duvdy{0.0f};

@@ -46,12 +46,12 @@ FootprintEllipse footprintEllipse(vec2 a, vec2 b) {
 }
 
 // Texture::sample(uv, TextureFootprint): up to 16 trilinear taps along the major axis of the
-// footprint's ellipse, each at the level of the minor axis (and not below minLod).
+// footprint's ellipse, each at the level of the minor axis (and not below minLod, nor level 0).
 vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
     vec2 size = textureSizeOf(index);
     FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
     if (isinf(e.major) || isnan(e.major)) return sampleTexture(index, uv, 1000.0);
-    float width = max(max(e.minor, e.major / 16.0), exp2(minLod));
+    float width = max(max(e.minor, e.major / 16.0), exp2(max(minLod, 0.0)));
     int taps = clamp(int(ceil(e.major / width - 1e-3)), 1, 16);
     float lod = width > 0.0 ? log2(width) : 0.0;
     if (taps == 1) return sampleTexture(index, uv, lod);

@@ -161,8 +161,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     float pathTexels = max(a.x + b.x, a.y + b.y);
     float spacing = exp2(max(0.0, min(footprintLod[0], min(footprintLod[1], footprintLod[2]))));
     int numTaps = clamp(int(ceil(u_tapsPerTexel * pathTexels / spacing)), 1, u_textureSamples);
-    // Never below level 0, the instant's floor (as on the CPU).
-    float pathLod = max(0.0, log2(max(pathTexels / float(u_textureSamples), 1e-8)));
+    float pathLod = log2(max(pathTexels / float(u_textureSamples), 1e-8));
 
     vec3 sum = vec3(0.0), specularSum = vec3(0.0);
     float alphaSum = 0.0;
