@@ -2,6 +2,7 @@
 
 #include "raster/edge_equation.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -26,6 +27,9 @@ public:
         const glm::dvec3 p(ndc, 1.0);
         return {glm::dot(m_a[e], p), glm::dot(m_b[e], p), glm::dot(m_c[e], p)};
     }
+    // A bound over u in [0, 1] on the size of edge e's terms: |edge vector at u| <= this,
+    // component by component.
+    glm::dvec3 edgeTermBound(int e) const { return glm::abs(m_a[e]) + glm::abs(m_b[e]) + glm::abs(m_c[e]); }
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;
