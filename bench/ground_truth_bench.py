@@ -14,9 +14,14 @@ method when its error (its noise plus the reference's) is no larger than the met
 top rung the spp are estimated from the error falling as 1/spp (fitted at the top rung), or the
 method is said to be within the reference's own noise.
 
+With --target-fg DB (issue 16's speed target: the time each takes to a given quality), each
+method instead climbs --aa-ladder until its foreground PSNR reaches DB, and Cycles its spp ladder;
+the table gives both times (streak's render time, least of --repeats at the chosen --aa; Cycles'
+render time, scene sync and BVH included, one render per rung) and their ratio.
+
 Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,analytic]
     [--spp 1024] [--ladder 16,32,64,128,256,512] [--out DIR] [--streak build/streak]
-    [--blender blender] [--repeats 1] [--reuse-cycles]
+    [--blender blender] [--repeats 1] [--reuse-cycles] [--target-fg 40 --aa-ladder 1,2,3,4,6,8]
 """
 import argparse
 import json
@@ -119,6 +124,71 @@ def earlier_renders(out, job, spp_list):
     return renders
 
 
+def model_renders(args, name, path, flags, ladder_spp):
+    """A model's scene file, its folder under args.out and its Cycles renders at the ladder's spp
+    and the reference's: rendered now, or an earlier run's with --reuse-cycles."""
+    scene, out = os.path.join(SCENES, path), os.path.join(args.out, name)
+    os.makedirs(out, exist_ok=True)
+    spp_list = ladder_spp + [args.spp]
+    job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
+           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation")}
+    renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None
+    if renders is None:
+        renders = cycles_reference.render(scene, scene_flags(flags), spp_list, out, streak=args.streak,
+                                          blender=args.blender, **job)
+    return scene, out, renders
+
+
+def with_aa(flags, aa):
+    """STREAK_FLAGS with --aa set to `aa`."""
+    out = list(flags)
+    out[out.index("--aa") + 1] = str(aa)
+    return out
+
+
+def time_to_quality(args):
+    """Each method's and Cycles' time to foreground PSNR args.target_fg against the reference."""
+    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
+    methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
+    ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
+    aa_ladder = [int(a) for a in args.aa_ladder.split(",")]
+    size, target = f"{args.width}x{args.height}", args.target_fg
+    print(f"Machine: {benchlib.machine()}. Time to {target:g} dB foreground PSNR at {size} against Cycles {args.spp} spp: "
+          f"streak {' '.join(with_aa(STREAK_FLAGS, 'N'))} for N in {args.aa_ladder} (render time, least of "
+          f"{args.repeats} at the first N that reaches it); Cycles at {args.ladder} spp (render time, scene sync and "
+          "BVH included, one render each).\n")
+    print("| model | Cycles: spp, fg PSNR, time | method | --aa | fg PSNR | time | Cycles / method |\n"
+          "|---|---|---|---:|---:|---:|---:|")
+    streak = benchlib.Streak(args.streak, args.out, args.repeats)
+    for name, path, flags in chosen:
+        scene, out, renders = model_renders(args, name, path, flags, ladder_spp)
+        reference = renders[args.spp]["path"]
+        cycles = None
+        for spp in ladder_spp:
+            _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
+            if fg >= target:
+                cycles = (spp, fg, renders[spp]["seconds"])
+                break
+        cycles_text = f"{cycles[0]} spp, {db(cycles[1])}, {cycles[2]:.2f} s" if cycles else f"> {ladder_spp[-1]} spp"
+        for method in methods:
+            image = os.path.join(out, f"{method}-target.exr")
+            found = None
+            for aa in aa_ladder:
+                args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, aa)
+                ms, _ = streak.render(scene, method, image, size=size, args=args_aa, repeats=1)
+                _, fg, _ = compare(args.streak, image, reference)
+                if fg >= target:
+                    if args.repeats > 1:
+                        ms, _ = streak.render(scene, method, image, size=size, args=args_aa)
+                    found = (aa, fg, ms / 1000)
+                    break
+            if found:
+                ratio = f"{cycles[2] / found[2]:.2f}" if cycles else "—"
+                print(f"| {name} | {cycles_text} | {method} | {found[0]} | {db(found[1])} | {found[2]:.2f} s | {ratio} |", flush=True)
+            else:
+                print(f"| {name} | {cycles_text} | {method} | > {aa_ladder[-1]} | {db(fg)} | — | — |", flush=True)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--streak", default=cycles_reference.STREAK)
@@ -133,7 +203,13 @@ def main():
     parser.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "streak-ground-truth"))
     parser.add_argument("--reuse-cycles", action="store_true",
                         help="reuse the Cycles renders an earlier run left in --out for the same job (streak re-rendered only)")
+    parser.add_argument("--target-fg", type=float, default=None,
+                        help="time to this foreground PSNR: streak climbs --aa-ladder, Cycles its spp ladder")
+    parser.add_argument("--aa-ladder", default="1,2,3,4,6,8", help="streak --aa values tried with --target-fg")
     args = parser.parse_args()
+    if args.target_fg is not None:
+        time_to_quality(args)
+        return
     chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
     methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
     ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
@@ -144,15 +220,7 @@ def main():
     ladders = []
     streak = benchlib.Streak(args.streak, args.out, args.repeats)
     for name, path, flags in chosen:
-        scene, out = os.path.join(SCENES, path), os.path.join(args.out, name)
-        os.makedirs(out, exist_ok=True)
-        spp_list = ladder_spp + [args.spp]
-        job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
-               "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation")}
-        renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None
-        if renders is None:
-            renders = cycles_reference.render(scene, scene_flags(flags), spp_list, out, streak=args.streak,
-                                              blender=args.blender, **job)
+        scene, out, renders = model_renders(args, name, path, flags, ladder_spp)
         reference = renders[args.spp]["path"]
         ladder = []
         for spp in ladder_spp:
