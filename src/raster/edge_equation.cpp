@@ -90,13 +90,12 @@ int solveQuadratic(const Quadratic& q, double roots[2], RootCaseCounts* counts) 
 // to one of two triangles sharing the edge, and to a lone triangle only along its top or left
 // side (inside right of the edge in raster x, or below a horizontal one).
 bool isInsideByEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec2& ndc, const std::array<double, 3>& values) {
-    constexpr double kOnEdge = 1e-6;  // relative to the edge function's terms: ~float rounding
     std::array<bool, 3> isOn{};
     double orientation = 0.0;
     for (std::size_t e = 0; e < 3; ++e) {
         const glm::dvec3& v = edges[e];
         const double scale = std::abs(v.x * ndc.x) + std::abs(v.y * ndc.y) + std::abs(v.z);
-        isOn[e] = std::abs(values[e]) <= kOnEdge * scale;
+        isOn[e] = std::abs(values[e]) <= kOnEdgeTolerance * scale;
         if (!isOn[e]) {
             if (orientation != 0.0 && (orientation > 0.0) != (values[e] > 0.0)) return false;
             orientation = values[e];

@@ -4,6 +4,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -31,12 +32,23 @@ HomogeneousSample evaluateHomogeneousXyw(const std::array<glm::dvec3, 3>& xyw, c
 // corners e, e + 1: c_e x c_(e+1)) and whose edge functions there are values[e] = edges[e] . p:
 // all edges of one sign (either orientation), and an edge within float precision of zero goes
 // by the rasterizer's top-left rule. Moving triangles of every order share it.
+// "Within float precision": |value| <= kOnEdgeTolerance (|e.x x| + |e.y y| + |e.z|).
+inline constexpr double kOnEdgeTolerance = 1e-6;
 bool isInsideByEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec2& ndc, const std::array<double, 3>& values);
 
 // A quadratic q(u) = a u^2 + b u + c.
 struct Quadratic {
     double a = 0.0, b = 0.0, c = 0.0;
     double operator()(double u) const { return (a * u + b) * u + c; }
+    // The largest value on [0, 1]: at an end, or at the vertex of a downward parabola.
+    double maxOnUnitInterval() const {
+        double m = std::max((*this)(0.0), (*this)(1.0));
+        if (a < 0.0) {
+            const double u = -b / (2.0 * a);
+            if (u > 0.0 && u < 1.0) m = std::max(m, (*this)(u));
+        }
+        return m;
+    }
 };
 
 // The edge function of a moving edge as a vector quadratic: (a u^2 + b u + c) . p for

@@ -1,5 +1,6 @@
 #include "raster/moving_triangle.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <bit>
@@ -42,6 +43,22 @@ HomogeneousSample MovingTriangle::sample(double u, const glm::dvec2& ndc) const 
 
 bool MovingTriangle::isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const {
     return isInsideByEdges({edgeVector(0, u), edgeVector(1, u), edgeVector(2, u)}, ndc, values);
+}
+
+bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const {
+    if (orientation == 0) return false;
+    const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
+    for (int e = 0; e < 3; ++e) {
+        Quadratic q = edgeFunction(e, ndc);
+        q.a *= orientation, q.b *= orientation, q.c *= orientation;
+        const double most = q.maxOnUnitInterval();
+        if (!(most < 0.0)) continue;
+        // The edge vector's terms at any u in [0, 1] are at most |a| + |b| + |c| each; twice the
+        // tolerance leaves room for rounding.
+        const glm::dvec3 terms = glm::abs(m_a[e]) + glm::abs(m_b[e]) + glm::abs(m_c[e]);
+        if (most < -2.0 * kOnEdgeTolerance * glm::dot(terms, size)) return true;
+    }
+    return false;
 }
 
 int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,

@@ -2,7 +2,6 @@
 
 #include "raster/edge_equation.h"
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -27,9 +26,11 @@ public:
         const glm::dvec3 p(ndc, 1.0);
         return {glm::dot(m_a[e], p), glm::dot(m_b[e], p), glm::dot(m_c[e], p)};
     }
-    // A bound over u in [0, 1] on the size of edge e's terms: |edge vector at u| <= this,
-    // component by component.
-    glm::dvec3 edgeTermBound(int e) const { return glm::abs(m_a[e]) + glm::abs(m_b[e]) + glm::abs(m_c[e]); }
+    // True when the triangle keeps the orientation `orientation` (+1: counter-clockwise, -1)
+    // over u in [0, 1] and ndc stays outside one of its edges throughout, by more than the
+    // inside test's on-edge tolerance: insideSpans would find no span there. It costs a third
+    // of insideSpans, so methods ask it first where most samples of a box are empty.
+    bool staysOutside(const glm::dvec2& ndc, int orientation) const;
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;

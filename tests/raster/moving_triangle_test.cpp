@@ -157,4 +157,40 @@ TEST(MovingTriangleInsideSpans, RandomsMatchPointInTriangleAtManyTimes) {
     EXPECT_GT(checked, 15000);
 }
 
+TEST(MovingTriangleStaysOutside, NeverSkipsASampleWithASpan) {
+    // Random moving triangles of one orientation, at random points and at points on or within
+    // rounding of an edge or a corner at the shutter's ends: wherever staysOutside holds,
+    // insideSpans finds nothing, and it holds for most points far outside.
+    Rng rng(29);
+    int outside = 0, nearEdge = 0;
+    for (int i = 0; i < 400; ++i) {
+        auto randomCorner = [&] { return glm::vec2(rng.uniform(-1, 1), rng.uniform(-1, 1)); };
+        const auto open = atW1(randomCorner(), randomCorner(), randomCorner());
+        const auto close = atW1(randomCorner(), randomCorner(), randomCorner());
+        const int orientation = isBackFacingThroughout(open, close) ? -1
+                                : isBackFacingThroughout({open[0], open[2], open[1]}, {close[0], close[2], close[1]}) ? 1
+                                                                                                                     : 0;
+        const MovingTriangle moving(open, close);
+        for (int k = 0; k < 40; ++k) {
+            glm::dvec2 p(rng.uniform(-3, 3), rng.uniform(-3, 3));
+            if (k % 2 == 1) {
+                // On the edge from corner e to e + 1 at u = 0 or 1, nudged by about the tolerance.
+                const auto& c = rng.uniform(0, 1) < 0.5 ? open : close;
+                const int e = int(rng.uniform(0, 3)) % 3;
+                const double s = k % 4 == 1 ? rng.uniform(0, 1) : 0.0;
+                const glm::dvec2 a(c[e].x, c[e].y), b(c[(e + 1) % 3].x, c[(e + 1) % 3].y);
+                p = a + s * (b - a) + glm::dvec2(rng.uniform(-1, 1), rng.uniform(-1, 1)) * 1e-7;
+                ++nearEdge;
+            }
+            if (!moving.staysOutside(p, orientation)) continue;
+            ASSERT_NE(orientation, 0);
+            std::array<double, 8> b;
+            EXPECT_EQ(moving.insideSpans(p, 0.1, false, b), 0) << "triangle " << i << " point " << k;
+            ++outside;
+        }
+    }
+    EXPECT_GT(outside, 1000);
+    EXPECT_GT(nearEdge, 7000);
+}
+
 }  // namespace streak::raster

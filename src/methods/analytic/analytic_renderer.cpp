@@ -64,19 +64,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// insideSpans' on-edge tolerance (isInsideByEdges' 1e-6), doubled against rounding.
-constexpr double kOnEdgeMargin = 2e-6;
-
-// Largest value of q on [0, 1].
-double maxOnUnitInterval(const raster::Quadratic& q) {
-    double m = std::max(q(0.0), q(1.0));
-    if (q.a < 0.0) {
-        const double u = -q.b / (2.0 * q.a);
-        if (u > 0.0 && u < 1.0) m = std::max(m, q(u));
-    }
-    return m;
-}
-
 class AnalyticRenderer final : public Renderer {
 public:
     explicit AnalyticRenderer(const Options& options) : m_options(options) {}
@@ -162,28 +149,12 @@ private:
             for (const glm::dvec2& c : corners) {
                 raster::Quadratic q = moving.edgeFunction(e, c);
                 q.a *= orientation, q.b *= orientation, q.c *= orientation;
-                if (maxOnUnitInterval(q) >= 0.0) {
+                if (q.maxOnUnitInterval() >= 0.0) {
                     outside = false;
                     break;
                 }
             }
             if (outside) return true;
-        }
-        return false;
-    }
-
-    // isOutsideTile for one sample, the test that saves a box's empty samples their edge
-    // solves: true when the segment keeps one orientation and the sample stays outside one of
-    // its edges for the whole segment by more than insideSpans' on-edge tolerance (1e-6 of the
-    // edge's terms, bounded here over u in [0, 1]), so that insideSpans would find no span.
-    static bool isOutsideSample(const exposure::TriangleSegment& s, const raster::MovingTriangle& moving, const glm::dvec2& ndc) {
-        if (s.orientation == 0) return false;
-        const glm::dvec3 p(std::abs(ndc.x), std::abs(ndc.y), 1.0);
-        for (int e = 0; e < 3; ++e) {
-            raster::Quadratic q = moving.edgeFunction(e, ndc);
-            q.a *= s.orientation, q.b *= s.orientation, q.c *= s.orientation;
-            const double most = maxOnUnitInterval(q);
-            if (most < 0.0 && most < -kOnEdgeMargin * glm::dot(moving.edgeTermBound(e), p)) return true;
         }
         return false;
     }
@@ -228,7 +199,7 @@ private:
                 for (int px = region.x0; px <= region.x1; ++px)
                     for (int s = 0; s < spp; ++s) {
                         const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
-                        if (frame.options.tileCull && isOutsideSample(segment, moving, ndc)) {
+                        if (frame.options.tileCull && moving.staysOutside(ndc, segment.orientation)) {
                             ++counters.samplesCulled;
                             continue;
                         }
