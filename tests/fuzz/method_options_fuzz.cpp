@@ -10,6 +10,8 @@
 // fuzz::kMaxImageSamples pixel samples (width x height x aa^2), and for a method that takes
 // `samples` (accumulation's passes, stochastic's times a pixel: up to 1 << 20, 256 and 8 by
 // default) only when the input sets it to at most kMaxRenderSamples; else it is created only.
+// Likewise higher-order's `check-visibility` (up to 20000 brute-force checks over every
+// triangle of a tile) renders only up to kMaxVisibilityChecks.
 
 #include "fuzz/fuzz_inputs.h"
 #include "methods/registry.h"
@@ -34,6 +36,7 @@ namespace {
 using namespace streak;
 
 constexpr int kMaxRenderSamples = 4;
+constexpr int kMaxVisibilityChecks = 64;
 
 // One thread: renders are tiny, and a report's stack is then the render's own.
 const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
@@ -107,12 +110,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t q = first.find('?');
     const std::string_view method = first.substr(0, q);
     Render render;
-    std::optional<int> samples;
+    std::optional<int> samples, visibilityChecks;
     std::unique_ptr<Renderer> renderer;
     try {
         OptionMap options = q == std::string_view::npos ? OptionMap() : OptionMap::parseQuery(first.substr(q + 1), "options");
         // Read from a copy: a getter marks its key as taken, so the method would accept it.
         if (options.has("samples")) samples = fuzz::parseInt(OptionMap(options).getString("samples", ""));
+        // An unparsed count counts as over the bound.
+        if (options.has("check-visibility"))
+            visibilityChecks = fuzz::parseInt(OptionMap(options).getString("check-visibility", "")).value_or(kMaxVisibilityChecks + 1);
         while (!text.empty()) {
             const std::string_view line = text.substr(0, text.find('\n'));
             text.remove_prefix(std::min(text.size(), line.size() + 1));
@@ -125,6 +131,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (equals == std::string_view::npos || equals == 0) return 0;
             options.set(std::string(line.substr(0, equals)), std::string(line.substr(equals + 1)));
             if (line.substr(0, equals) == "samples") samples = fuzz::parseInt(line.substr(equals + 1));
+            if (line.substr(0, equals) == "check-visibility")
+                visibilityChecks = fuzz::parseInt(line.substr(equals + 1)).value_or(kMaxVisibilityChecks + 1);
         }
         const RenderSettings& r = render.settings;
         if (r.width * r.height * r.aa * r.aa > fuzz::kMaxImageSamples) return -1;
@@ -135,6 +143,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!renderer) fuzz::finding("createRenderer returned no renderer for " + std::string(method));
     if (method.ends_with("-gl")) return 0;
     if (methodsWithSamples.contains(method) && !(samples && *samples <= kMaxRenderSamples)) return 0;
+    if (visibilityChecks && *visibilityChecks > kMaxVisibilityChecks) return 0;
     Image image;
     try {
         RenderStats stats;
