@@ -124,6 +124,14 @@ def earlier_renders(out, job, spp_list):
     return renders
 
 
+def selection(args):
+    """The models, methods and Cycles ladder (spp) the command line chose."""
+    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
+    methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
+    ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
+    return chosen, methods, ladder_spp
+
+
 def model_renders(args, name, path, flags, ladder_spp):
     """A model's scene file, its folder under args.out and its Cycles renders at the ladder's spp
     and the reference's: rendered now, or an earlier run's with --reuse-cycles."""
@@ -148,9 +156,7 @@ def with_aa(flags, aa):
 
 def time_to_quality(args):
     """Each method's and Cycles' time to foreground PSNR args.target_fg against the reference."""
-    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
-    methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
-    ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
+    chosen, methods, ladder_spp = selection(args)
     aa_ladder = [int(a) for a in args.aa_ladder.split(",")]
     size, target = f"{args.width}x{args.height}", args.target_fg
     print(f"Machine: {benchlib.machine()}. Time to {target:g} dB foreground PSNR at {size} against Cycles {args.spp} spp: "
@@ -210,9 +216,7 @@ def main():
     if args.target_fg is not None:
         time_to_quality(args)
         return
-    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
-    methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
-    ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
+    chosen, methods, ladder_spp = selection(args)
     size = f"{args.width}x{args.height}"
     print(f"Machine: {benchlib.machine()}. streak {' '.join(STREAK_FLAGS)} at {size}, least of {args.repeats}; "
           f"reference: Cycles {args.spp} spp; ladder: {args.ladder} spp (its own seeds) against that reference.\n")

@@ -11,8 +11,8 @@ compared (PSNR between them: inf when the change is exact).
 
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
-Section memory: peak resident memory of each method (the process's maxrss) on the two cases
-above, on every built-in scene at 1024x768, and on the 1M-triangle MetalRoughSpheresNoTextures.
+Section memory: peak resident memory of each method (the process's maxrss) on the profile's
+cases, on every built-in scene at 1024x768, and on the 1M-triangle MetalRoughSpheresNoTextures.
 
 Section resolution: render time of each method on builtin:cubes from 256x192 to 1920x1080, and
 per megapixel (cost linear in pixels: a flat column); --plot DIR draws DIR/speed_resolution.png.

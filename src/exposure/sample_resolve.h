@@ -43,9 +43,10 @@ struct SampleResolveScratch {
 // method that finds them: shade what must be known before the resolve (translucent opacity;
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
 // exactly over time (dropping first what is wholly hidden), then shade each visible piece once
-// (abutting whole pieces of a triangle merged). The method supplies, per interval source: triangleOf(source), isTranslucent(triangle)
-// and shade(triangle, t0, t1) -> ShadedColor; exactDepth, when given, measures the linear
-// depths' misordering (resolveOpaque). Shares are of the sample row's exposure, `window`.
+// (abutting whole pieces of a triangle merged). The method supplies, per interval source:
+// triangleOf(source), isTranslucent(triangle) and shade(triangle, t0, t1) -> ShadedColor;
+// exactDepth, when given, measures the linear depths' misordering (resolveOpaque). Shares are
+// of the sample row's exposure, `window`.
 template <class TriangleOf, class IsTranslucent, class Shade>
 glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const OracleWeights& oracle, const ExactDepth* exactDepth,
                         bool cullHidden, const ShutterWindow& window, const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,

@@ -18,6 +18,7 @@ MovingTriangle::MovingTriangle(const std::array<glm::vec4, 3>& open, const std::
         const int f = (e + 1) % 3;
         const MovingEdge edge = movingEdge(m_corner[e], m_delta[e], m_corner[f], m_delta[f]);
         m_a[e] = edge.a, m_b[e] = edge.b, m_c[e] = edge.c;
+        m_termBound[e] = glm::abs(edge.a) + glm::abs(edge.b) + glm::abs(edge.c);
     }
 }
 
@@ -53,10 +54,8 @@ bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const 
         q.a *= orientation, q.b *= orientation, q.c *= orientation;
         const double most = q.maxOnUnitInterval();
         if (!(most < 0.0)) continue;
-        // The edge vector's terms at any u in [0, 1] are at most |a| + |b| + |c| each; twice the
-        // tolerance leaves room for rounding.
-        const glm::dvec3 terms = glm::abs(m_a[e]) + glm::abs(m_b[e]) + glm::abs(m_c[e]);
-        if (most < -2.0 * kOnEdgeTolerance * glm::dot(terms, size)) return true;
+        // Twice the tolerance leaves room for rounding.
+        if (most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
     }
     return false;
 }

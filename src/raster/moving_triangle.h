@@ -65,6 +65,7 @@ private:
     glm::dvec3 edgeVector(int e, double u) const { return (m_a[e] * u + m_b[e]) * u + m_c[e]; }
 
     std::array<glm::dvec3, 3> m_a, m_b, m_c;        ///< edge e: (a u^2 + b u + c) . p
+    std::array<glm::dvec3, 3> m_termBound;          ///< |a| + |b| + |c|: edge e's terms over u in [0, 1] are at most this
     std::array<glm::dvec3, 3> m_corner, m_delta;    ///< (x, y, w) at u = 0 and its change to u = 1
 };
 
