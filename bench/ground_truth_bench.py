@@ -19,7 +19,7 @@ method instead climbs --aa-ladder until its foreground PSNR reaches DB, and Cycl
 the table gives both times (streak's render time, least of --repeats at the chosen --aa; Cycles'
 render time, scene sync and BVH included, one render per rung) and their ratio.
 
-Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,analytic]
+Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,motion-path:shading=sample]
     [--spp 1024] [--ladder 16,32,64,128,256,512] [--out DIR] [--streak build/streak]
     [--blender blender] [--repeats 1] [--reuse-cycles] [--target-fg 40 --aa-ladder 1,2,3,4,6,8]
 """
@@ -70,6 +70,14 @@ def compare(streak, a, b):
 def cpu_methods(streak):
     out = subprocess.run([streak, "methods"], check=True, capture_output=True, text=True).stdout
     return [line.split()[0] for line in out.splitlines() if line.strip() and not line.split()[0].endswith("-gl")]
+
+
+def method_spec(spec):
+    """A --methods entry: NAME or NAME:key=value[;key=value] (method options, e.g.
+    motion-path:shading=sample), as (method, its --option flags, a file-name stem)."""
+    method, _, options = spec.partition(":")
+    flags = [f"--option={o}" for o in options.split(";") if o]
+    return method, flags, re.sub(r"[^A-Za-z0-9.-]", "_", spec)
 
 
 def scene_flags(flags):
@@ -176,11 +184,12 @@ def time_to_quality(args):
                 cycles = (spp, fg, renders[spp]["seconds"])
                 break
         cycles_text = f"{cycles[0]} spp, {db(cycles[1])}, {cycles[2]:.2f} s" if cycles else f"> {ladder_spp[-1]} spp"
-        for method in methods:
-            image = os.path.join(out, f"{method}-target.exr")
+        for spec in methods:
+            method, options, stem = method_spec(spec)
+            image = os.path.join(out, f"{stem}-target.exr")
             found = None
             for aa in aa_ladder:
-                args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, aa)
+                args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, aa) + options
                 ms, _ = streak.render(scene, method, image, size=size, args=args_aa, repeats=1)
                 _, fg, _ = compare(args.streak, image, reference)
                 if fg >= target:
@@ -190,9 +199,9 @@ def time_to_quality(args):
                     break
             if found:
                 ratio = f"{cycles[2] / found[2]:.2f}" if cycles else "—"
-                print(f"| {name} | {cycles_text} | {method} | {found[0]} | {db(found[1])} | {found[2]:.2f} s | {ratio} |", flush=True)
+                print(f"| {name} | {cycles_text} | {spec} | {found[0]} | {db(found[1])} | {found[2]:.2f} s | {ratio} |", flush=True)
             else:
-                print(f"| {name} | {cycles_text} | {method} | > {aa_ladder[-1]} | {db(fg)} | — | — |", flush=True)
+                print(f"| {name} | {cycles_text} | {spec} | > {aa_ladder[-1]} | {db(fg)} | — | — |", flush=True)
 
 
 def main():
@@ -200,7 +209,8 @@ def main():
     parser.add_argument("--streak", default=cycles_reference.STREAK)
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--models", default="", help="comma-separated model names (default: all)")
-    parser.add_argument("--methods", default="", help="comma-separated methods (default: every CPU method)")
+    parser.add_argument("--methods", default="",
+                        help="comma-separated methods, each NAME or NAME:key=value;... with method options (default: every CPU method)")
     parser.add_argument("--spp", type=int, default=1024, help="Cycles spp of the reference")
     parser.add_argument("--ladder", default="16,32,64,128,256,512", help="Cycles spp compared with the reference")
     parser.add_argument("--width", type=int, default=320)
@@ -231,12 +241,13 @@ def main():
             _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
             ladder.append((spp, renders[spp]["seconds"], fg))
         ladders.append((name, ladder, renders[args.spp]["seconds"]))
-        for method in methods:
-            image = os.path.join(out, f"{method}.exr")
-            ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + STREAK_FLAGS)
+        for spec in methods:
+            method, options, stem = method_spec(spec)
+            image = os.path.join(out, f"{stem}.exr")
+            ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + STREAK_FLAGS + options)
             psnr, fg, pixels = compare(args.streak, image, reference)
             equal = cycles_equal(ladder, args.spp, renders[args.spp]["seconds"], fg)
-            print(f"| {name} | {method} | {db(psnr)} | {db(fg)} ({pixels} px) | {ms / 1000:.2f} s | {equal} |", flush=True)
+            print(f"| {name} | {spec} | {db(psnr)} | {db(fg)} ({pixels} px) | {ms / 1000:.2f} s | {equal} |", flush=True)
     if ladder_spp:
         print("\nCycles' ladder: foreground PSNR against the reference and render time (scene sync and BVH "
               "included); the reference's own noise floor, estimated from the top rung as if the error fell as 1/spp "

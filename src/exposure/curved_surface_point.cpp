@@ -23,12 +23,13 @@ const raster::CurvedTriangle& curvedTriangleOf(const CurvedGeometry& geometry, s
     });
 }
 
-CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis,
-                                       std::uint32_t triangle, const glm::dvec2& ndc, CurvedTriangleCache& cache)
+CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const raster::Viewport& viewport, const ShadingSite& site,
+                                       std::uint32_t triangle, CurvedTriangleCache& cache)
     : m_geometry(geometry),
-      m_step(2.0 / (double(viewport.width) * samplesPerAxis), 2.0 / (double(viewport.height) * samplesPerAxis)),
+      m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
+      m_clamp(site.clampToTriangle),
       m_triangle(triangle),
-      m_ndc(ndc),
+      m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),
       m_cache(cache) {}
 
@@ -41,6 +42,7 @@ const CurvedSegment& CurvedSurfacePoint::select(float t) const {
         m_uNumerator = m_vNumerator = m_denominator = raster::Bernstein{};
         for (int i = 0; i < 3; ++i) {
             const raster::Bernstein e = m_curved->edgeFunction((i + 1) % 3, m_ndc);
+            m_weights[std::size_t(i)] = e;
             m_uNumerator = m_uNumerator + double(m_uv[std::size_t(i)].x) * e;
             m_vNumerator = m_vNumerator + double(m_uv[std::size_t(i)].y) * e;
             m_denominator = m_denominator + e;
@@ -53,6 +55,7 @@ bool CurvedSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
     const double denominator = m_denominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
+    if (m_clamp && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
     uv = glm::vec2(float(m_uNumerator(u) / denominator), float(m_vNumerator(u) / denominator));
     return true;
 }
@@ -62,7 +65,7 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
     const raster::CurvedTriangle& curved = *m_curved;
     const double u = segment.localTime(t);
     const std::array<glm::dvec3, 3> corners = curved.cornersAt(u);
-    const raster::HomogeneousSample s = raster::evaluateHomogeneousXyw(corners, m_ndc);
+    raster::HomogeneousSample s = raster::evaluateHomogeneousXyw(corners, m_ndc);
     if (!s.isValid) return false;
     glm::dvec3 right = s.bary, down = s.bary;
     if (withFootprint) {
@@ -70,6 +73,11 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
         const raster::HomogeneousSample d = raster::evaluateHomogeneousXyw(corners, m_ndc + glm::dvec2(0.0, -m_step.y));
         // Past the horizon the neighbours say nothing about the footprint.
         if (r.isValid && d.isValid && r.viewDepth > 0.0 && d.viewDepth > 0.0) right = r.bary, down = d.bary;
+    }
+    if (m_clamp) {
+        // The footprint keeps its shape; it moves with the point.
+        const glm::dvec3 held = clampedBarycentrics(s.bary);
+        right += held - s.bary, down += held - s.bary, s.bary = held;
     }
     std::array<glm::vec3, 3> world, normal;
     for (std::size_t i = 0; i < 3; ++i) {
@@ -82,9 +90,8 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
 }
 
 ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
-                            std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, CurvedTriangleCache& cache) {
-    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, settings.samplesPerAxis, triangle, ndc, cache),
-                         settings);
+                            std::uint32_t triangle, float t0, float t1, const ShadingSite& site, CurvedTriangleCache& cache) {
+    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), settings);
 }
 
 }  // namespace streak::exposure

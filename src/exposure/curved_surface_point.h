@@ -1,6 +1,7 @@
 #pragma once
 
 #include "exposure/curved_geometry.h"
+#include "exposure/shading_site.h"
 #include "exposure/triangle_cache.h"
 #include "raster/curved_triangle.h"
 #include "raster/screen_triangle.h"
@@ -22,9 +23,9 @@ const raster::CurvedTriangle& curvedTriangleOf(const CurvedGeometry& geometry, s
 // piece holding that time, world position and normal from the world-space control points.
 class CurvedSurfacePoint final : public MovingSurfacePoint {
 public:
-    // samplesPerAxis: the --aa N whose sample spacing is the texture footprint.
-    CurvedSurfacePoint(const CurvedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis, std::uint32_t triangle,
-                       const glm::dvec2& ndc, CurvedTriangleCache& cache);
+    // The point under site.ndc, its texture footprint site.footprintPixels.
+    CurvedSurfacePoint(const CurvedGeometry& geometry, const raster::Viewport& viewport, const ShadingSite& site, std::uint32_t triangle,
+                       CurvedTriangleCache& cache);
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     // uv as a ratio of Bernstein polynomials: sum(uv_i E_opposite(u)) / sum(E(u)).
@@ -34,7 +35,8 @@ private:
     const CurvedSegment& select(float t) const;
 
     const CurvedGeometry& m_geometry;
-    glm::dvec2 m_step;  ///< one sample spacing in NDC
+    glm::dvec2 m_step;  ///< the footprint in NDC
+    bool m_clamp;       ///< barycentrics held to the triangle
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;
@@ -42,10 +44,11 @@ private:
     mutable const CurvedSegment* m_segment = nullptr;  ///< the piece the members below belong to
     mutable const raster::CurvedTriangle* m_curved = nullptr;
     mutable raster::Bernstein m_uNumerator, m_vNumerator, m_denominator;
+    mutable std::array<raster::Bernstein, 3> m_weights;  ///< corner i's unnormalised barycentric
 };
 
-// The mean shaded colour and opacity of a curved triangle over [t0, t1] at a sample.
+// The mean shaded colour and opacity of a curved triangle over [t0, t1] at a site.
 ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
-                            std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, CurvedTriangleCache& cache);
+                            std::uint32_t triangle, float t0, float t1, const ShadingSite& site, CurvedTriangleCache& cache);
 
 }  // namespace streak::exposure

@@ -2,7 +2,8 @@
 
 namespace streak::exposure {
 
-void recordResolveStats(RenderStats& stats, const SampleResolveCounters& r, double intervalSeconds, double numSamples, int budget) {
+void recordResolveStats(RenderStats& stats, const SampleResolveCounters& r, double intervalSeconds, double numSamples, double numPixels,
+                        int budget, const PixelShadingOptions& shading) {
     // Tile work runs on all threads at once: split the tiles' wall time by thread time.
     const double threadTime = intervalSeconds + r.resolveSeconds + r.shadeSeconds;
     const double scale = threadTime > 0.0 ? stats.time("tiles") / threadTime : 0.0;
@@ -16,8 +17,8 @@ void recordResolveStats(RenderStats& stats, const SampleResolveCounters& r, doub
     stats.setCounter("compressed_samples", double(r.compressedSamples));
     stats.setCounter("resolved_intervals_max", double(r.maxResolved));
     stats.setCounter("merges", double(r.merges));
-    stats.setCounter("shaded_spans", double(r.shadedSpans));
     stats.setCounter("hidden_intervals_culled", double(r.hiddenCulled));
+    recordPixelShadingStats(stats, r.shading, numPixels, shading);
 }
 
 }  // namespace streak::exposure

@@ -2,6 +2,7 @@
 
 #include "exposure/exposure_interval.h"
 #include "exposure/occlusion_cull.h"
+#include "exposure/pixel_shading.h"
 #include "exposure/visible_pieces.h"
 #include "scene/shading.h"
 #include "util/stats.h"
@@ -17,21 +18,24 @@ namespace streak::exposure {
 
 // What resolving samples from exposure intervals did, summed over samples (for --stats).
 struct SampleResolveCounters {
-    std::int64_t intervals = 0, maxIntervals = 0, compressedSamples = 0, merges = 0, maxResolved = 0, shadedSpans = 0, hiddenCulled = 0;
+    std::int64_t intervals = 0, maxIntervals = 0, compressedSamples = 0, merges = 0, maxResolved = 0, hiddenCulled = 0;
     double misorderedTime = 0.0, coveredPairTime = 0.0;
     double resolveSeconds = 0.0, shadeSeconds = 0.0;
+    PixelShadingCounters shading;
     void add(const SampleResolveCounters& o) {
         intervals += o.intervals, maxIntervals = std::max(maxIntervals, o.maxIntervals), compressedSamples += o.compressedSamples;
-        merges += o.merges, maxResolved = std::max(maxResolved, o.maxResolved), shadedSpans += o.shadedSpans, hiddenCulled += o.hiddenCulled;
+        merges += o.merges, maxResolved = std::max(maxResolved, o.maxResolved), hiddenCulled += o.hiddenCulled;
         misorderedTime += o.misorderedTime, coveredPairTime += o.coveredPairTime;
         resolveSeconds += o.resolveSeconds, shadeSeconds += o.shadeSeconds;
+        shading.add(o.shading);
     }
 };
 
 // Records what every exposure-interval method reports: the tiles' wall time split by thread time
 // into intervals (finding them: intervalSeconds), resolve and shade; and the interval counters
-// (per sample of numSamples, the budget, compression, shaded spans).
-void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counters, double intervalSeconds, double numSamples, int budget);
+// (per sample of numSamples, the budget, compression) and the shading's (per pixel of numPixels).
+void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counters, double intervalSeconds, double numSamples,
+                        double numPixels, int budget, const PixelShadingOptions& shading);
 
 struct SampleResolveScratch {
     std::vector<float> weights;
@@ -42,8 +46,9 @@ struct SampleResolveScratch {
 // The colour of one pixel sample from its exposure intervals (Gribel et al. 2010), for every
 // method that finds them: shade what must be known before the resolve (translucent opacity;
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
-// exactly over time (dropping first what is wholly hidden), then shade each visible piece once
-// (abutting whole pieces of a triangle merged). The method supplies, per interval source:
+// exactly over time (dropping first what is wholly hidden). Returns the colour of all but the
+// visible opaque pieces, which it leaves in scratch.pieces (abutting whole pieces of a triangle
+// merged) for the pixel's shading (PixelShading). The method supplies, per interval source:
 // triangleOf(source), isTranslucent(triangle) and shade(triangle, t0, t1) -> ShadedColor;
 // exactDepth, when given, measures the linear depths' misordering (resolveOpaque). Shares are
 // of the sample row's exposure, `window`.
@@ -93,9 +98,6 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
         scratch.pieces.push_back({triangleOf(list[k].source), list[k].t0, list[k].t1, scratch.weights[k], isWhole});
     }
     mergeAbuttingPieces(scratch.pieces);
-    for (const VisiblePiece& piece : scratch.pieces) sum += shade(piece.triangle, piece.t0, piece.t1).color * piece.weight;
-    counters.shadedSpans += std::int64_t(scratch.pieces.size());
-    counters.shadeSeconds += std::chrono::duration<double>(Clock::now() - resolved).count();
     return sum;
 }
 

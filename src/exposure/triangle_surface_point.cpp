@@ -6,12 +6,13 @@
 
 namespace streak::exposure {
 
-TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis,
-                                           std::uint32_t triangle, const glm::dvec2& ndc, MovingTriangleCache& cache)
+TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, const ShadingSite& site,
+                                           std::uint32_t triangle, MovingTriangleCache& cache)
     : m_geometry(geometry),
-      m_step(2.0 / (double(viewport.width) * samplesPerAxis), 2.0 / (double(viewport.height) * samplesPerAxis)),
+      m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
+      m_clamp(site.clampToTriangle),
       m_triangle(triangle),
-      m_ndc(ndc),
+      m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])), m_cache(cache) {}
 
 const TriangleSegment& TriangleSurfacePoint::select(float t) const {
@@ -24,6 +25,7 @@ const TriangleSegment& TriangleSurfacePoint::select(float t) const {
         m_uvDenominator = {};
         for (int i = 0; i < 3; ++i) {
             const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
+            m_weights[std::size_t(i)] = e;
             const glm::dvec2 uv(m_uv[i]);
             m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
             m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
@@ -44,9 +46,15 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
         // Past the horizon the neighbours say nothing about the footprint.
         const bool isUseful = n[0].isValid && n[1].isValid && n[0].viewDepth > 0.0 && n[1].viewDepth > 0.0;
         right = isUseful ? n[0].bary : s.bary, down = isUseful ? n[1].bary : s.bary;
+        if (m_clamp) {
+            // The footprint keeps its shape; it moves with the point.
+            const glm::dvec3 held = clampedBarycentrics(s.bary);
+            right += held - s.bary, down += held - s.bary, s.bary = held;
+        }
     } else {
         s = m_moving->sample(u, m_ndc);
         if (!s.isValid) return false;
+        if (m_clamp) s.bary = clampedBarycentrics(s.bary);
         right = down = s.bary;
     }
     std::array<glm::vec3, 3> world, normal;
@@ -65,14 +73,15 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
     const double denominator = m_uvDenominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
+    if (m_clamp && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
     uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
     return true;
 }
 
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
-                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const ShadingSite& site,
                               MovingTriangleCache& cache) {
-    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, settings.samplesPerAxis, triangle, ndc, cache), settings);
+    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, site, triangle, cache), settings);
 }
 
 }  // namespace streak::exposure

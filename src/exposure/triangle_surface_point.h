@@ -1,6 +1,7 @@
 #pragma once
 
 #include "exposure/segmented_geometry.h"
+#include "exposure/shading_site.h"
 #include "exposure/triangle_cache.h"
 #include "raster/moving_triangle.h"
 #include "raster/screen_triangle.h"
@@ -34,9 +35,9 @@ private:
 // segment last used is kept, since taps come in time order.
 class TriangleSurfacePoint final : public MovingSurfacePoint {
 public:
-    // samplesPerAxis: the --aa N whose sample spacing is the texture footprint.
-    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, int samplesPerAxis, std::uint32_t triangle,
-                         const glm::dvec2& ndc, MovingTriangleCache& cache);
+    // The point under site.ndc, its texture footprint site.footprintPixels.
+    TriangleSurfacePoint(const SegmentedGeometry& geometry, const raster::Viewport& viewport, const ShadingSite& site, std::uint32_t triangle,
+                         MovingTriangleCache& cache);
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
@@ -45,7 +46,8 @@ private:
     const TriangleSegment& select(float t) const;
 
     const SegmentedGeometry& m_geometry;
-    glm::dvec2 m_step;  ///< one sample spacing in NDC
+    glm::dvec2 m_step;  ///< the footprint in NDC
+    bool m_clamp;       ///< barycentrics held to the triangle
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;
@@ -54,11 +56,12 @@ private:
     mutable const raster::MovingTriangle* m_moving = nullptr;
     mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
     mutable raster::Quadratic m_uvDenominator;
+    mutable std::array<raster::Quadratic, 3> m_weights;  ///< corner i's unnormalised barycentric
 };
 
-// The mean shaded colour and opacity of a triangle over [t0, t1] at a sample (shadeTimeSpan).
+// The mean shaded colour and opacity of a triangle over [t0, t1] at a site (shadeTimeSpan).
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
-                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc,
+                              const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const ShadingSite& site,
                               MovingTriangleCache& cache);
 
 }  // namespace streak::exposure

@@ -30,6 +30,7 @@ struct SamplePattern {
     static SamplePattern rooks(int n);
     static SamplePattern grid(int n);
     int count() const { return int(offsets.size()); }
+    int samplesPerAxis() const { return m_samplesPerAxis; }
     // The spacing of the samples along each axis in fixed-point units (a pixel over n): the
     // texture footprint of one sample, since the box filter integrates the samples.
     std::int64_t footprintStep() const { return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(m_samplesPerAxis))); }

@@ -32,7 +32,6 @@ struct SpanShadingSettings {
     float tapsPerTexel = 2.0f;     ///< taps per texel of the footprint's mip level along the uv path
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
-    int samplesPerAxis = 1;        ///< --aa N: the texture footprint is one sample spacing, 1/N pixel
     ShutterWindow window;          ///< the sample's row of the shutter: taps are even in its exposure
 };
 

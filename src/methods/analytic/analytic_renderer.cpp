@@ -1,5 +1,6 @@
 #include "methods/analytic/analytic_renderer.h"
 
+#include "exposure/pixel_shading.h"
 #include "exposure/sample_resolve.h"
 #include "exposure/tile_pass.h"
 #include "exposure/segmented_geometry.h"
@@ -35,6 +36,7 @@ struct Options {
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
     int curveSegments = 4;
+    exposure::PixelShadingOptions shading;
 };
 
 // One interval waiting in its tile for its sample's list.
@@ -55,6 +57,7 @@ struct TileScratch {
     std::vector<std::uint32_t> runs;
     std::vector<ExposureInterval> list;
     exposure::SampleResolveScratch resolve;
+    exposure::PixelShading pixelShading;
     std::vector<glm::vec3> color;
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's segments' edge equations
     Counters counters;
@@ -76,7 +79,6 @@ public:
             frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
             frame.spanShading.maxTextureTaps = m_options.textureSamples;
             frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
-            frame.spanShading.samplesPerAxis = settings.aa;
             frame.computeBounds();
         }
         raster::TileGrid grid(viewport, kTileSize);
@@ -95,8 +97,9 @@ public:
             total.resolve.add(c.resolve);
         }
         RenderStats& stats = context.stats;
-        const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
-        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, m_options.maxIntervals);
+        const double numPixels = double(settings.width) * settings.height, numSamples = numPixels * frame.pattern.count();
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.maxIntervals,
+                                     m_options.shading);
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
@@ -133,6 +136,14 @@ private:
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
 
         void computeBounds() { bounds = segmented->screenBounds(viewport); }
+
+        // A span's colour at a site (its point and footprint), in the row's shutter window.
+        ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
+                          exposure::MovingTriangleCache& cache) const {
+            SpanShadingSettings rowShading = spanShading;
+            rowShading.window = scene.shutter.rowWindow(row, viewport.height);
+            return exposure::shadeTriangleSpan(*segmented, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
+        }
     };
 
     // True when the segment keeps one orientation and stays outside one of its edges over the
@@ -228,10 +239,11 @@ private:
 
         // Per sample: resolve the intervals exactly and shade what shows (exposure::resolveSample).
         exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
-                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
+                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
+                              frame.options.shading, scratch.pixelShading, counters.resolve,
+                              [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].baseColorTexture >= 0; },
                               [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
-            SpanShadingSettings spanShading = frame.spanShading;
-            spanShading.window = scene.shutter.rowWindow(row, height);
+            const ShutterWindow window = scene.shutter.rowWindow(row, height);
             std::optional<exposure::ExactDepth> exactDepth;
             if (frame.options.checkDepthOrder)
                 exactDepth = [&](std::size_t k, float t) {
@@ -240,14 +252,15 @@ private:
                 };
             return exposure::resolveSample(
                 list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, frame.options.occlusionCull,
-                spanShading.window, scene.background,
+                window, scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
                 [&](std::uint32_t triangle, float t0, float t1) {
-                    return exposure::shadeTriangleSpan(*frame.segmented, frame.viewport, frame.settings.shading, spanShading, triangle, t0, t1,
-                                                       ndc, scratch.movingTriangles);
+                    return frame.shade(triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), row, scratch.movingTriangles);
                 },
                 scratch.resolve, counters.resolve);
+        }, [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
+            return frame.shade(triangle, t0, t1, site, row, scratch.movingTriangles);
         });
     }
 
@@ -278,6 +291,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
     o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.shading = exposure::pixelShadingOptions(options, "analytic");
     return std::make_unique<AnalyticRenderer>(o);
 }
 

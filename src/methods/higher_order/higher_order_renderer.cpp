@@ -2,6 +2,7 @@
 
 #include "exposure/curved_geometry.h"
 #include "exposure/curved_surface_point.h"
+#include "exposure/pixel_shading.h"
 #include "exposure/sample_resolve.h"
 #include "exposure/tile_pass.h"
 #include "raster/curved_triangle.h"
@@ -43,6 +44,7 @@ struct Options {
     bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
+    exposure::PixelShadingOptions shading;
 };
 
 struct Record {
@@ -63,6 +65,7 @@ struct TileScratch {
     std::vector<std::uint32_t> runs;
     std::vector<ExposureInterval> list;
     exposure::SampleResolveScratch resolve;
+    exposure::PixelShading pixelShading;
     std::vector<glm::vec3> color;
     exposure::CurvedTriangleCache curved;
     Counters counters;
@@ -86,7 +89,6 @@ public:
             frame.geometry.emplace(scene, float(settings.width) / float(settings.height), m_options.cameraOrder);
             frame.spanShading.maxTextureTaps = m_options.textureSamples;
             frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
-            frame.spanShading.samplesPerAxis = settings.aa;
             frame.numBoxes = m_options.traversal == Traversal::Interval ? m_options.intervals : 1;
             frame.boxes = frame.geometry->screenBounds(viewport, frame.numBoxes);
             frame.bounds.resize(frame.geometry->segments().size());
@@ -121,7 +123,8 @@ public:
         }
         RenderStats& stats = context.stats;
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
-        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, m_options.maxIntervals);
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, double(settings.width) * settings.height,
+                                     m_options.maxIntervals, m_options.shading);
         stats.setCounter("motion_order", frame.geometry->order());
         stats.setCounter("motion_fitted", frame.geometry->isFitted() ? 1.0 : 0.0);
         stats.setCounter("pieces_per_triangle", frame.geometry->numPieces());
@@ -168,6 +171,14 @@ private:
         std::vector<raster::PixelBounds> boxes;   ///< numBoxes per segment (traversal)
         std::vector<raster::PixelBounds> bounds;  ///< per segment: the union of its boxes, for binning
         int numBoxes = 1;
+
+        // A span's colour at a site (its point and footprint), in the row's shutter window.
+        ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
+                          exposure::CurvedTriangleCache& cache) const {
+            SpanShadingSettings rowShading = spanShading;
+            rowShading.window = scene.shutter.rowWindow(row, viewport.height);
+            return exposure::shadeCurvedSpan(*geometry, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
+        }
     };
 
     // The sample's exposure intervals from one segment: its exact inside spans, each cut where
@@ -303,20 +314,21 @@ private:
         counters.intervalSeconds += secondsSince(start);
 
         exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
-                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.color, image,
+                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
+                              frame.options.shading, scratch.pixelShading, counters.resolve,
+                              [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].baseColorTexture >= 0; },
                               [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
-            SpanShadingSettings spanShading = frame.spanShading;
-            spanShading.window = scene.shutter.rowWindow(row, height);
             return exposure::resolveSample(
-                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, frame.options.occlusionCull, spanShading.window,
-                scene.background,
+                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, frame.options.occlusionCull,
+                scene.shutter.rowWindow(row, height), scene.background,
                 [&](std::uint32_t source) { return segments[source].triangle; },
                 [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
                 [&](std::uint32_t triangle, float t0, float t1) {
-                    return exposure::shadeCurvedSpan(geometry, frame.viewport, frame.settings.shading, spanShading, triangle, t0, t1, ndc,
-                                                     scratch.curved);
+                    return frame.shade(triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), row, scratch.curved);
                 },
                 scratch.resolve, counters.resolve);
+        }, [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
+            return frame.shade(triangle, t0, t1, site, row, scratch.curved);
         });
     }
 
@@ -404,6 +416,7 @@ std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options) {
     o.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.shading = exposure::pixelShadingOptions(options, "higher-order");
     return std::make_unique<HigherOrderRenderer>(o);
 }
 

@@ -1,5 +1,6 @@
 #include "methods/motion_path/motion_path_renderer.h"
 
+#include "exposure/pixel_shading.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/triangle_surface_point.h"
 #include "exposure/visible_pieces.h"
@@ -43,6 +44,7 @@ struct Options {
     bool sortIntervals = true;
     int curveSegments = 4;
     float tapsPerTexel = 2.0f;
+    exposure::PixelShadingOptions shading;
 };
 
 // A sample a motion path may cover. Paths are conservative and overlap themselves, so a sample
@@ -56,7 +58,8 @@ struct Fragment {
 // Counters of one thread, summed at the end.
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
-                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, shadedIntervals = 0, pathFaces = 0;
+                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0;
+    exposure::PixelShadingCounters shading;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
 
@@ -74,6 +77,7 @@ struct TileScratch {
     std::vector<float> backgroundWeights;  ///< per sample
     std::vector<Interval> work;            ///< one sample's list while it is sorted
     std::vector<exposure::VisiblePiece> spans;  ///< one sample's visible opaque pieces
+    exposure::PixelShading pixelShading;        ///< one pixel's, shaded together
     std::vector<float> events;
     std::vector<glm::vec3> color;
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
@@ -117,7 +121,8 @@ public:
             total.fragments += c.fragments, total.fragmentOverflowSamples += c.fragmentOverflowSamples;
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
-            total.culledIntervals += c.culledIntervals, total.shadedIntervals += c.shadedIntervals, total.pathFaces += c.pathFaces;
+            total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces;
+            total.shading.add(c.shading);
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
             total.shadeSeconds += c.shadeSeconds;
@@ -148,7 +153,7 @@ public:
         stats.setCounter("interval_splits", double(total.splits));
         stats.setCounter("sort_cycles", double(total.cycles));
         stats.setCounter("backface_intervals_culled", double(total.culledIntervals));
-        stats.setCounter("shaded_spans", double(total.shadedIntervals));
+        exposure::recordPixelShadingStats(stats, total.shading, double(settings.width) * settings.height, m_options.shading);
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
@@ -174,7 +179,6 @@ private:
               geometry(segmented.flat()), paths(segmented.segments()) {
             spanShading.maxTextureTaps = options.textureSamples;
             spanShading.tapsPerTexel = options.tapsPerTexel;
-            spanShading.samplesPerAxis = settings.aa;
         }
 
         // Paths are binned by their screen boxes and built into faces tile by tile, so memory
@@ -194,11 +198,12 @@ private:
             for (int i = 0; i < n; ++i) events.push_back(float(p.t0 + bounds[i] * (double(p.t1) - double(p.t0))));
         }
 
-        ShadedColor shadeSpan(std::uint32_t triangle, float t0, float t1, const glm::dvec2& ndc, const ShutterWindow& window,
-                              exposure::MovingTriangleCache& cache) const {
+        // A span's colour at a site (its point and footprint), in the row's shutter window.
+        ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, const ShutterWindow& window,
+                          exposure::MovingTriangleCache& cache) const {
             SpanShadingSettings rowShading = spanShading;
             rowShading.window = window;
-            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, rowShading, triangle, t0, t1, ndc, cache);
+            return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
         }
 
         const Scene& scene;
@@ -244,7 +249,7 @@ private:
                 interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
                 interval.source = fragments[i].path;
                 if (material.isTranslucent()) {
-                    const ShadedColor shaded = frame.shadeSpan(path.triangle, t0, t1, ndc, window, scratch.movingTriangles);
+                    const ShadedColor shaded = frame.shade(path.triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), window, scratch.movingTriangles);
                     interval.color = shaded.color, interval.alpha = shaded.alpha;
                 }
                 out.push_back(interval);
@@ -386,41 +391,51 @@ private:
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
 
-        // Shade: only what shows. Translucent intervals were shaded when built; abutting wholly
-        // visible pieces of a triangle are shaded as one span (exposure::mergeAbuttingPieces).
+        // Shade: only what shows, pixel by pixel (exposure::PixelShading). Translucent intervals
+        // were shaded when built; abutting wholly visible pieces of a triangle are one span
+        // (exposure::mergeAbuttingPieces).
         start = now;
         scratch.color.resize(numSamples);
-        for (std::size_t i = 0; i < numSamples; ++i) {
-            glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
-            const ShutterWindow window = sampleWindow(frame, rect, i);
-            const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
-            std::vector<exposure::VisiblePiece>& spans = scratch.spans;
-            spans.clear();
-            for (std::uint32_t k = begin; k < end; ++k) {
-                if (scratch.weights[k] <= 0.0f) continue;
-                const Interval& interval = scratch.sorted[k];
-                const std::uint32_t triangle = frame.paths[interval.source].triangle;
-                if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
-                    sum += interval.color * scratch.weights[k];
-                else {
-                    bool isWhole;
-                    if (options.exactWeights) {
-                        isWhole = scratch.weights[k] >= window.measure(interval.t0, interval.t1) * (1.0f - 1e-5f);
-                    } else {
-                        const int bits = motion_path::TimeMask::exposed(interval.t0, interval.t1, window, options.maskBits).count();
-                        isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
+        for (std::size_t first = 0; first < numSamples; first += std::size_t(spp)) {
+            const ShutterWindow window = sampleWindow(frame, rect, first);
+            scratch.pixelShading.begin(frame.pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
+                                       options.shading.cellsFor(frame.pattern.samplesPerAxis()));
+            for (int s = 0; s < spp; ++s) {
+                const std::size_t i = first + std::size_t(s);
+                glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
+                const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
+                std::vector<exposure::VisiblePiece>& spans = scratch.spans;
+                spans.clear();
+                for (std::uint32_t k = begin; k < end; ++k) {
+                    if (scratch.weights[k] <= 0.0f) continue;
+                    const Interval& interval = scratch.sorted[k];
+                    const std::uint32_t triangle = frame.paths[interval.source].triangle;
+                    if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
+                        sum += interval.color * scratch.weights[k];
+                    else {
+                        bool isWhole;
+                        if (options.exactWeights) {
+                            isWhole = scratch.weights[k] >= window.measure(interval.t0, interval.t1) * (1.0f - 1e-5f);
+                        } else {
+                            const int bits = motion_path::TimeMask::exposed(interval.t0, interval.t1, window, options.maskBits).count();
+                            isWhole = scratch.weights[k] * float(options.maskBits) >= float(bits) - 0.5f;
+                        }
+                        spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
                     }
-                    spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
                 }
-            }
-            if (!spans.empty()) {
+                scratch.color[i] = sum;
+                if (spans.empty()) continue;
                 exposure::mergeAbuttingPieces(spans);
-                const glm::dvec2 ndc = sampleNdc(frame, rect, i);
-                for (const exposure::VisiblePiece& span : spans)
-                    sum += frame.shadeSpan(span.triangle, span.t0, span.t1, ndc, window, scratch.movingTriangles).color * span.weight;
-                counters.shadedIntervals += std::int64_t(spans.size());
+                scratch.pixelShading.add(s, sampleNdc(frame, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
+                    return frame.scene.materials[frame.geometry.triangles()[triangle].material].baseColorTexture >= 0;
+                });
             }
-            scratch.color[i] = sum;
+            scratch.pixelShading.finish(
+                options.shading.rate,
+                [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site) {
+                    return frame.shade(triangle, t0, t1, site, window, scratch.movingTriangles);
+                },
+                std::span<glm::vec3>(scratch.color).subspan(first, std::size_t(spp)), counters.shading);
         }
         counters.shadeSeconds += secondsSince(start);
 
@@ -447,6 +462,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.shading = exposure::pixelShadingOptions(options, "motion-path");
     return std::make_unique<MotionPathRenderer>(o);
 }
 

@@ -85,7 +85,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     float worst = 0.0f;
     for (std::size_t i = 0; i < probes.size(); ++i) {
         const ShadingProbe& p = probes[i];
-        const ShadedColor want = exposure::shadeTriangleSpan(segmented, viewport, shading, settings, p.triangle, p.t0, p.t1, p.ndc, cache);
+        const ShadedColor want = exposure::shadeTriangleSpan(segmented, viewport, shading, settings, p.triangle, p.t0, p.t1, exposure::sampleSite(p.ndc, 1), cache);
         const glm::vec4 got = shaded[i];
         const float error = std::max({std::abs(got.x - want.color.x), std::abs(got.y - want.color.y), std::abs(got.z - want.color.z),
                                       std::abs(got.w - want.alpha)});

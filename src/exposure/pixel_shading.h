@@ -1,0 +1,146 @@
+#pragma once
+
+#include "exposure/shading_site.h"
+#include "exposure/visible_pieces.h"
+#include "raster/sample_pattern.h"
+#include "scene/shading.h"
+#include "util/options.h"
+#include "util/stats.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace streak::exposure {
+
+// How often the exact methods shade what their samples see. Visibility is exact per sample
+// either way; only the colour of a visible time span is shared or not.
+enum class ShadingRate {
+    // Decoupled shading (Ragan-Kelley et al. 2011): the samples of one pixel that see one
+    // triangle over overlapping times share one shading, of the pixel's footprint swept along
+    // the motion over the union of their times; each sample weighs it by its own exposure.
+    Pixel,
+    // Every visible span of every sample is shaded alone, at the sample, with a footprint of one
+    // sample spacing: N^2 shadings per pixel and triangle, the reference path.
+    Sample,
+};
+
+// The exact methods' shading options: `shading=pixel|sample` (sample, until pixel holds every
+// shared model's fidelity against Cycles: docs/BENCHMARKS.md) and `shading-cells=G` (4):
+// at ShadingRate::Pixel a textured triangle is shaded in G x G cells of the pixel (at most --aa
+// N per axis), each shared by the samples that fall in it, an untextured one once per pixel.
+struct PixelShadingOptions {
+    ShadingRate rate = ShadingRate::Sample;
+    int cellsPerAxis = 4;
+    int cellsFor(int samplesPerAxis) const { return std::min(cellsPerAxis, samplesPerAxis); }
+};
+PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& method);
+
+// What shading the visible pieces did, summed over pixels (for --stats).
+struct PixelShadingCounters {
+    std::int64_t pixels = 0;            ///< pixels with any visible opaque piece
+    std::int64_t pieces = 0;            ///< visible opaque pieces of samples (abutting ones merged)
+    std::int64_t shadedSpans = 0;       ///< the shadings they took
+    std::int64_t visibleTriangles = 0;  ///< per pixel, the distinct triangles of its pieces, summed
+    void add(const PixelShadingCounters& o) {
+        pixels += o.pixels, pieces += o.pieces, shadedSpans += o.shadedSpans, visibleTriangles += o.visibleTriangles;
+    }
+};
+
+// Records them: shaded_spans, visible_pieces, and per pixel of numPixels (the image's) the
+// shadings and the distinct visible triangles, whose ratio says how well shading is shared.
+void recordPixelShadingStats(RenderStats& stats, const PixelShadingCounters& counters, double numPixels, const PixelShadingOptions& options);
+
+// One pixel's visible opaque pieces, gathered from its samples once their visibility is
+// resolved, then shaded together.
+//
+// At ShadingRate::Pixel the pieces of one triangle are sorted by start time and cut into time
+// clusters: a piece joins the cluster before it when they overlap by at least half of the
+// shorter of the piece and the cluster's hull (kShareOverlap). A large or slow triangle then
+// takes one shading for all its samples; a thin fast sliver, whose samples see it at disjoint
+// times, takes one per cluster of times and is never smeared along its path beyond them. A
+// cluster is shaded over its hull at the exposure-weighted centroid of its samples with a
+// footprint as wide as its samples spread (one sample spacing for a lone sample, one pixel for a
+// full pixel): the box of those samples swept along the motion. At the times the centroid lies
+// off the triangle (a cluster's samples see it at different times) the point is held to the
+// triangle (ShadingSite::clampToTriangle), so a small triangle never shades its neighbours'
+// texels.
+class PixelShading {
+public:
+    static constexpr float kShareOverlap = 0.5f;
+
+    // Starts a pixel with the samples of `pattern`, one pixel being pixelNdc wide and high in
+    // NDC, shaded in cellsPerAxis x cellsPerAxis cells (ShadingRate::Pixel): each cell's
+    // samples share their shadings.
+    void begin(const raster::SamplePattern& pattern, const glm::dvec2& pixelNdc, int cellsPerAxis);
+    // Adds the visible pieces of the pixel's sample `sample` at `ndc`. isTextured(triangle) says
+    // whether a triangle's colour varies within a pixel by more than its lighting and vertex
+    // colours do: only such triangles are shaded in cells; the rest once per pixel.
+    template <class IsTextured>
+    void add(int sample, const glm::dvec2& ndc, std::span<const VisiblePiece> pieces, IsTextured&& isTextured) {
+        m_ndc[std::size_t(sample)] = ndc;
+        for (const VisiblePiece& piece : pieces)
+            m_pending.push_back({piece, std::uint32_t(sample), isTextured(piece.triangle) ? m_cell[std::size_t(sample)] : 0u});
+    }
+
+    // Shades the pixel's pieces with shade(triangle, t0, t1, ShadingSite) -> ShadedColor and adds
+    // each piece's colour times its weight to colors[its sample], in each sample's own order of
+    // pieces (so a colour that does not depend on the site gives each sample the same sum).
+    template <class Shade>
+    void finish(ShadingRate rate, Shade&& shade, std::span<glm::vec3> colors, PixelShadingCounters& counters) {
+        if (m_pending.empty()) return;
+        ++counters.pixels;
+        counters.pieces += std::int64_t(m_pending.size());
+        if (rate == ShadingRate::Sample) {
+            for (const Pending& p : m_pending)
+                colors[p.sample] += shade(p.piece.triangle, p.piece.t0, p.piece.t1, sampleSite(m_ndc[p.sample], m_samplesPerAxis)).color *
+                                    p.piece.weight;
+            counters.shadedSpans += std::int64_t(m_pending.size());
+            counters.visibleTriangles += countTriangles();
+            return;
+        }
+        formClusters();
+        std::uint32_t lastTriangle = ~0u;
+        for (const Cluster& cluster : m_clusters) {
+            const glm::vec3 color = shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true}).color;
+            for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
+                const Pending& p = m_pending[m_order[k]];
+                colors[p.sample] += color * p.piece.weight;
+            }
+            counters.visibleTriangles += cluster.triangle != lastTriangle;
+            lastTriangle = cluster.triangle;
+        }
+        counters.shadedSpans += std::int64_t(m_clusters.size());
+    }
+
+private:
+    struct Pending {
+        VisiblePiece piece;
+        std::uint32_t sample = 0, cell = 0;
+    };
+    // Pieces m_order[begin..end) of one triangle, shaded as one span.
+    struct Cluster {
+        std::uint32_t triangle = 0, cell = 0, begin = 0, end = 0;
+        float t0 = 0.0f, t1 = 0.0f;
+        glm::dvec2 ndc{0.0}, footprintPixels{1.0};
+    };
+
+    void formClusters();
+    std::int64_t countTriangles();
+
+    int m_samplesPerAxis = 1;
+    glm::dvec2 m_pixelNdc{1.0};
+    int m_cellsPerAxis = 1;
+    std::vector<glm::dvec2> m_ndc;      ///< per sample of the pixel
+    std::vector<std::uint32_t> m_cell;  ///< per sample of the pixel: its shading cell
+    std::vector<Pending> m_pending;
+    std::vector<std::uint32_t> m_order;
+    std::vector<Cluster> m_clusters;
+};
+
+}  // namespace streak::exposure

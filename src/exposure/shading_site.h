@@ -1,0 +1,46 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <array>
+
+namespace streak::exposure {
+
+// Where a span is shaded, for the surface points of span shading (TriangleSurfacePoint,
+// CurvedSurfacePoint): the point under it, the texture footprint around it, and whether the
+// point is held to its triangle.
+struct ShadingSite {
+    glm::dvec2 ndc{0.0};
+    // The footprint's extent in pixels along x and y: one sample spacing (1/N at --aa N) when a
+    // sample shades alone, up to one pixel when a pixel's samples share the shading.
+    glm::dvec2 footprintPixels{1.0};
+    // A shared shading's point lies anywhere among its samples, and at some of the span's times
+    // outside the triangle that they see: held to the triangle (barycentrics clamped), it
+    // shades the nearest part of that triangle, never the texels of its neighbours in a texture
+    // atlas that extrapolated barycentrics would reach.
+    bool clampToTriangle = false;
+};
+
+// Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.
+inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false}; }
+
+// Barycentrics held to the triangle: negative weights dropped, the rest renormalised.
+inline glm::dvec3 clampedBarycentrics(const glm::dvec3& b) {
+    if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0) return b;
+    const glm::dvec3 c(std::max(b.x, 0.0), std::max(b.y, 0.0), std::max(b.z, 0.0));
+    const double sum = c.x + c.y + c.z;
+    return sum > 0.0 ? c / sum : glm::dvec3(1.0 / 3.0);
+}
+
+// The uv at barycentrics b held to the triangle, into `uv`, when b lies outside it; false (uv
+// untouched) when b is inside and the caller's own exact uv stands.
+inline bool heldUvOutside(const glm::dvec3& b, const std::array<glm::vec2, 3>& corners, glm::vec2& uv) {
+    if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0) return false;
+    const glm::dvec3 held = clampedBarycentrics(b);
+    uv = glm::vec2(held.x * glm::dvec2(corners[0]) + held.y * glm::dvec2(corners[1]) + held.z * glm::dvec2(corners[2]));
+    return true;
+}
+
+}  // namespace streak::exposure

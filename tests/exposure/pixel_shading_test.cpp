@@ -1,0 +1,143 @@
+#include "exposure/pixel_shading.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace streak::exposure {
+
+namespace {
+
+struct Call {
+    std::uint32_t triangle;
+    float t0, t1;
+    ShadingSite site;
+};
+
+// Shades every triangle with its own constant colour, recording each call.
+struct Recorder {
+    std::vector<Call> calls;
+    ShadedColor operator()(std::uint32_t triangle, float t0, float t1, const ShadingSite& site) {
+        calls.push_back({triangle, t0, t1, site});
+        return {glm::vec3(float(triangle + 1), 0.5f, 0.25f), 1.0f};
+    }
+};
+
+glm::dvec2 sampleNdc(int s) { return {0.01 * s, -0.02 * s}; }
+
+constexpr auto kUntextured = [](std::uint32_t) { return false; };
+constexpr auto kTextured = [](std::uint32_t) { return true; };
+
+}  // namespace
+
+TEST(PixelShading, SampleRateShadesEveryPieceAtItsSample) {
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(2);
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 2);
+    for (int s = 0; s < 4; ++s) {
+        const VisiblePiece piece{7, 0.0f, 1.0f, 1.0f, true};
+        shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), kUntextured);
+    }
+    Recorder recorder;
+    std::vector<glm::vec3> colors(4, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(ShadingRate::Sample, recorder, colors, counters);
+    ASSERT_EQ(recorder.calls.size(), 4u);
+    for (int s = 0; s < 4; ++s) {
+        EXPECT_EQ(recorder.calls[std::size_t(s)].site.ndc, sampleNdc(s));
+        EXPECT_EQ(recorder.calls[std::size_t(s)].site.footprintPixels, glm::dvec2(0.5));
+        EXPECT_FALSE(recorder.calls[std::size_t(s)].site.clampToTriangle);
+        EXPECT_EQ(colors[std::size_t(s)], glm::vec3(8.0f, 0.5f, 0.25f));
+    }
+    EXPECT_EQ(counters.shadedSpans, 4);
+    EXPECT_EQ(counters.visibleTriangles, 1);
+}
+
+TEST(PixelShading, OverlappingPiecesShareOneShadingWeightedBySample) {
+    // An edge sweeping over the pixel: the samples see the triangle from t = 0 to different
+    // times, and one sample also sees a second triangle.
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(2);
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 1);
+    const float ends[4] = {1.0f, 0.8f, 0.6f, 0.4f};
+    for (int s = 0; s < 4; ++s) {
+        std::vector<VisiblePiece> pieces{{3, 0.0f, ends[s], ends[s], true}};
+        if (s == 3) pieces.push_back({5, 0.4f, 1.0f, 0.6f, true});
+        shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(pieces), kUntextured);
+    }
+    Recorder recorder;
+    std::vector<glm::vec3> colors(4, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+    ASSERT_EQ(recorder.calls.size(), 2u);
+    const Call& shared = recorder.calls[0];
+    EXPECT_EQ(shared.triangle, 3u);
+    EXPECT_EQ(shared.t0, 0.0f);
+    EXPECT_EQ(shared.t1, 1.0f);
+    EXPECT_TRUE(shared.site.clampToTriangle);
+    // The exposure-weighted centroid of the four samples.
+    glm::dvec2 centroid(0.0);
+    double weights = 0.0;
+    for (int s = 0; s < 4; ++s) centroid += sampleNdc(s) * double(ends[s]), weights += ends[s];
+    EXPECT_NEAR(shared.site.ndc.x, centroid.x / weights, 1e-12);
+    EXPECT_NEAR(shared.site.ndc.y, centroid.y / weights, 1e-12);
+    for (int s = 0; s < 3; ++s) EXPECT_EQ(colors[std::size_t(s)], glm::vec3(4.0f, 0.5f, 0.25f) * ends[s]);
+    EXPECT_EQ(colors[3], glm::vec3(4.0f, 0.5f, 0.25f) * 0.4f + glm::vec3(6.0f, 0.5f, 0.25f) * 0.6f);
+    EXPECT_EQ(counters.pieces, 5);
+    EXPECT_EQ(counters.shadedSpans, 2);
+    EXPECT_EQ(counters.visibleTriangles, 2);
+}
+
+TEST(PixelShading, AFastSliverIsShadedOnlyOverTheTimesItsSamplesSeeIt) {
+    // A thin triangle crossing the pixel fast: each sample sees it for a short time, the
+    // samples one after another. A shading over the hull of all of them would smear it along
+    // its path; every shading must cover only times its own samples see it, each joined piece
+    // overlapping the cluster by at least half of the shorter.
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(4);
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 1);
+    std::vector<VisiblePiece> all;
+    for (int s = 0; s < 16; ++s) {
+        const float t0 = 0.2f + 0.01f * float((s * 7) % 16);
+        const VisiblePiece piece{9, t0, t0 + 0.012f, 0.012f, true};
+        all.push_back(piece);
+        shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), kUntextured);
+    }
+    Recorder recorder;
+    std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+    EXPECT_GT(recorder.calls.size(), 4u);  // the hull [0.2, 0.362] is not shaded as one
+    for (const Call& call : recorder.calls) {
+        EXPECT_LE(call.t1 - call.t0, 0.012f * 2.0f + 1e-6f) << "a shading spans more than its pieces";
+        // Every instant of the shading is seen by one of the pieces it serves.
+        for (float f = 0.0f; f <= 1.0f; f += 0.125f) {
+            const float t = call.t0 + f * (call.t1 - call.t0);
+            EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const VisiblePiece& p) { return t >= p.t0 - 1e-6f && t <= p.t1 + 1e-6f; }));
+        }
+    }
+    for (const glm::vec3& c : colors) EXPECT_EQ(c, glm::vec3(10.0f, 0.5f, 0.25f) * 0.012f);
+}
+
+TEST(PixelShading, TexturedTrianglesAreShadedPerCellUntexturedOncePerPixel) {
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(4);
+    for (const bool textured : {false, true}) {
+        PixelShading shading;
+        shading.begin(pattern, glm::dvec2(0.1), 2);
+        for (int s = 0; s < 16; ++s) {
+            const VisiblePiece piece{1, 0.0f, 1.0f, 1.0f, true};
+            if (textured) shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), kTextured);
+            else shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), kUntextured);
+        }
+        Recorder recorder;
+        std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
+        PixelShadingCounters counters;
+        shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+        ASSERT_EQ(recorder.calls.size(), textured ? 4u : 1u);
+        for (const Call& call : recorder.calls) EXPECT_LE(call.site.footprintPixels.x, textured ? 0.5 : 1.0);
+        EXPECT_EQ(counters.visibleTriangles, 1);
+    }
+}
+
+}  // namespace streak::exposure
