@@ -28,6 +28,7 @@ CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const ras
     : m_geometry(geometry),
       m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
       m_clamp(site.clampToTriangle),
+      m_holdUv(site.clampToTriangle && !site.boxFootprint),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),
@@ -55,7 +56,7 @@ bool CurvedSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
     const double denominator = m_denominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
-    if (m_clamp && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
+    if (m_holdUv && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
     uv = glm::vec2(float(m_uNumerator(u) / denominator), float(m_vNumerator(u) / denominator));
     return true;
 }
@@ -91,7 +92,9 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
 
 ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
                             std::uint32_t triangle, float t0, float t1, const ShadingSite& site, CurvedTriangleCache& cache) {
-    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), settings);
+    SpanShadingSettings atSite = settings;
+    atSite.boxFootprint = site.boxFootprint;
+    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), atSite);
 }
 
 }  // namespace streak::exposure

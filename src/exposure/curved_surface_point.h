@@ -30,6 +30,7 @@ public:
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     // uv as a ratio of Bernstein polynomials: sum(uv_i E_opposite(u)) / sum(E(u)).
     bool uvAt(float t, glm::vec2& uv) const override;
+    const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
 
 private:
     const CurvedSegment& select(float t) const;
@@ -37,6 +38,7 @@ private:
     const CurvedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
     bool m_clamp;       ///< barycentrics held to the triangle
+    bool m_holdUv;      ///< and uvAt's too, unless a box footprint clips its taps to it instead
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

@@ -16,6 +16,10 @@ PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& m
     else if (value == "sample") o.rate = ShadingRate::Sample;
     else throw Error("method '" + method + "': shading must be pixel or sample, got '" + value + "'");
     o.cellsPerAxis = options.getInt("shading-cells", o.cellsPerAxis, 1, 16);
+    const std::string filter = options.getString("shading-filter", "box");
+    if (filter == "box") o.boxFilter = true;
+    else if (filter == "lookup") o.boxFilter = false;
+    else throw Error("method '" + method + "': shading-filter must be box or lookup, got '" + filter + "'");
     return o;
 }
 
@@ -42,7 +46,7 @@ void PixelShading::begin(const raster::SamplePattern& pattern, const glm::dvec2&
     }
 }
 
-void PixelShading::formClusters() {
+void PixelShading::formClusters(bool isBoxCentred) {
     m_order.resize(m_pending.size());
     std::iota(m_order.begin(), m_order.end(), 0u);
     // Each sample's pieces come sorted by (triangle, start) already, and a sample has one cell:
@@ -58,7 +62,9 @@ void PixelShading::formClusters() {
     double weightSum = 0.0;
     auto close = [&] {
         Cluster& c = m_clusters.back();
-        c.ndc = weightSum > 0.0 ? ndcSum / weightSum : m_ndc[m_pending[m_order[c.begin]].sample];
+        // A box is centred on its samples' bounds, which it spans; a lookup sits at their centroid.
+        if (isBoxCentred) c.ndc = 0.5 * (lo + hi);
+        else c.ndc = weightSum > 0.0 ? ndcSum / weightSum : m_ndc[m_pending[m_order[c.begin]].sample];
         // The samples' spread plus one sample spacing, at most the cell.
         c.footprintPixels = glm::min(glm::dvec2(1.0 / m_cellsPerAxis), glm::abs(hi - lo) / m_pixelNdc + glm::dvec2(1.0 / m_samplesPerAxis));
     };

@@ -30,13 +30,19 @@ enum class ShadingRate {
     Sample,
 };
 
-// The exact methods' shading options: `shading=pixel|sample` (sample, until pixel holds every
-// shared model's fidelity against Cycles: docs/BENCHMARKS.md) and `shading-cells=G` (4):
+// The exact methods' shading options: `shading=pixel|sample` (sample, until the GL twins shade
+// per pixel too; against Cycles, docs/BENCHMARKS.md) and `shading-cells=G` (4):
 // at ShadingRate::Pixel a textured triangle is shaded in G x G cells of the pixel (at most --aa
 // N per axis), each shared by the samples that fall in it, an untextured one once per pixel.
+//
+// `shading-filter=box|lookup` (box): how a shared shading filters its texture over the cluster's
+// footprint, as the mean of its texels inside the triangle (TextureFootprint::isBox, clipTo) or
+// as one sample's GPU lookup widened to the footprint. The lookup is about three times too wide
+// a filter for a pixel's box: against Cycles it loses 11-12 dB on CesiumMan and Fox at 1 cell.
 struct PixelShadingOptions {
     ShadingRate rate = ShadingRate::Sample;
     int cellsPerAxis = 4;
+    bool boxFilter = true;
     int cellsFor(int samplesPerAxis) const { return std::min(cellsPerAxis, samplesPerAxis); }
 };
 PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& method);
@@ -64,12 +70,12 @@ void recordPixelShadingStats(RenderStats& stats, const PixelShadingCounters& cou
 // shorter of the piece and the cluster's hull (kShareOverlap). A large or slow triangle then
 // takes one shading for all its samples; a thin fast sliver, whose samples see it at disjoint
 // times, takes one per cluster of times and is never smeared along its path beyond them. A
-// cluster is shaded over its hull at the exposure-weighted centroid of its samples with a
-// footprint as wide as its samples spread (one sample spacing for a lone sample, one pixel for a
-// full pixel): the box of those samples swept along the motion. At the times the centroid lies
-// off the triangle (a cluster's samples see it at different times) the point is held to the
-// triangle (ShadingSite::clampToTriangle), so a small triangle never shades its neighbours'
-// texels.
+// cluster is shaded over its hull with a footprint as wide as its samples spread (one sample
+// spacing for a lone sample, one pixel for a full pixel): the box of those samples swept along
+// the motion, centred on their bounds (a lookup's bell sits at their exposure-weighted
+// centroid instead). At the times that point lies off the triangle (a cluster's samples see it
+// at different times) it is held to the triangle (ShadingSite::clampToTriangle), and a box's
+// texture taps are clipped to it, so a small triangle never shades its neighbours' texels.
 class PixelShading {
 public:
     static constexpr float kShareOverlap = 0.5f;
@@ -92,11 +98,11 @@ public:
     // each piece's colour times its weight to colors[its sample], in each sample's own order of
     // pieces (so a colour that does not depend on the site gives each sample the same sum).
     template <class Shade>
-    void finish(ShadingRate rate, Shade&& shade, std::span<glm::vec3> colors, PixelShadingCounters& counters) {
+    void finish(const PixelShadingOptions& options, Shade&& shade, std::span<glm::vec3> colors, PixelShadingCounters& counters) {
         if (m_pending.empty()) return;
         ++counters.pixels;
         counters.pieces += std::int64_t(m_pending.size());
-        if (rate == ShadingRate::Sample) {
+        if (options.rate == ShadingRate::Sample) {
             for (const Pending& p : m_pending)
                 colors[p.sample] += shade(p.piece.triangle, p.piece.t0, p.piece.t1, sampleSite(m_ndc[p.sample], m_samplesPerAxis)).color *
                                     p.piece.weight;
@@ -104,10 +110,10 @@ public:
             counters.visibleTriangles += countTriangles();
             return;
         }
-        formClusters();
+        formClusters(options.boxFilter);
         std::uint32_t lastTriangle = ~0u;
         for (const Cluster& cluster : m_clusters) {
-            const glm::vec3 color = shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true}).color;
+            const glm::vec3 color = shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter}).color;
             for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
                 const Pending& p = m_pending[m_order[k]];
                 colors[p.sample] += color * p.piece.weight;
@@ -130,7 +136,7 @@ private:
         glm::dvec2 ndc{0.0}, footprintPixels{1.0};
     };
 
-    void formClusters();
+    void formClusters(bool isBoxCentred);
     std::int64_t countTriangles();
 
     int m_samplesPerAxis = 1;

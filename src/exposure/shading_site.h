@@ -21,10 +21,13 @@ struct ShadingSite {
     // shades the nearest part of that triangle, never the texels of its neighbours in a texture
     // atlas that extrapolated barycentrics would reach.
     bool clampToTriangle = false;
+    // The footprint is a region of the screen whose samples share the shading, so its texels are
+    // averaged alike (a box, SpanShadingSettings::boxFootprint), not a sample's bell.
+    bool boxFootprint = false;
 };
 
 // Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.
-inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false}; }
+inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false, false}; }
 
 // Barycentrics held to the triangle: negative weights dropped, the rest renormalised.
 inline glm::dvec3 clampedBarycentrics(const glm::dvec3& b) {

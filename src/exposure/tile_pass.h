@@ -72,7 +72,7 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
             pixelShading.add(s, ndc, std::span<const VisiblePiece>(pieces), isTextured);
         }
         const auto start = Clock::now();
-        pixelShading.finish(shading.rate, [&](std::uint32_t triangle, float t0, float t1, const ShadingSite& site) { return shade(triangle, t0, t1, site, row); },
+        pixelShading.finish(shading, [&](std::uint32_t triangle, float t0, float t1, const ShadingSite& site) { return shade(triangle, t0, t1, site, row); },
                             std::span<glm::vec3>(color).subspan(first, std::size_t(spp)), counters.shading);
         counters.shadeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
     }

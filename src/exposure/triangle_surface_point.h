@@ -41,6 +41,7 @@ public:
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
+    const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
 
 private:
     const TriangleSegment& select(float t) const;
@@ -48,6 +49,7 @@ private:
     const SegmentedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
     bool m_clamp;       ///< barycentrics held to the triangle
+    bool m_holdUv;      ///< and uvAt's too, unless a box footprint clips its taps to it instead
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

@@ -125,28 +125,37 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);
     const QuadraticThrough<glm::vec2> duvdyAt(ends[0].duvdy, ends[1].duvdy, ends[2].duvdy);
 
+    // A shared shading's box counts only the texels of the triangle its samples see, and each
+    // time as much as the triangle covers of the box then: the pixel sees the triangle's colour
+    // over time in proportion to its coverage. A time at which no tap is inside still counts a
+    // little, so a span never loses all its weight.
+    const std::array<glm::vec2, 3>* clipTo = settings.boxFootprint ? point.uvTriangle() : nullptr;
+    constexpr float kLeastCoverage = 1e-3f;
     // Texel sums; the base colour and the vertex colour multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
-    float alphaSum = 0.0f;
-    int used = 0;
+    float alphaSum = 0.0f, weightSum = 0.0f;
     for (int i = 0; i < taps; ++i) {
         const float f = (float(i) + 0.5f) / float(taps);
         glm::vec2 uv = ends[1].uv;
-        if (2 * i + 1 != taps && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
-        const glm::vec4 texel = texture.sample(uv, TextureFootprint{duvdxAt(f), duvdyAt(f), pathLod});
+        // (The middle tap's uv is the middle end's, unless a clipped box wants it not held.)
+        if ((clipTo || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
+        const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, settings.boxFootprint, clipTo};
+        float weight = 1.0f;
+        const glm::vec4 texel = clipTo ? texture.sampleBox(uv, footprint, &weight) : texture.sample(uv, footprint);
+        weight = std::max(weight, kLeastCoverage);
         if (isLit) {
             const PhongTerms terms = lighting->at(f);
-            sum += glm::vec3(texel) * terms.diffuse;
-            specularSum += terms.specular;
+            sum += glm::vec3(texel) * terms.diffuse * weight;
+            specularSum += terms.specular * weight;
         } else {
-            sum += glm::vec3(texel);
+            sum += glm::vec3(texel) * weight;
         }
         // Each tap's alpha goes through the alpha mode: Mask taps are 0 or 1, their mean coverage.
-        alphaSum += material.alphaOf(texel.w * vertexColor.w);
-        ++used;
+        alphaSum += material.alphaOf(texel.w * vertexColor.w) * weight;
+        weightSum += weight;
     }
-    if (used == 0) return {glm::vec3(0.0f), 0.0f};
-    const float scale = 1.0f / float(used);
+    if (weightSum == 0.0f) return {glm::vec3(0.0f), 0.0f};
+    const float scale = 1.0f / weightSum;
     return {material.baseColor * glm::vec3(vertexColor) * sum * scale + specularSum * scale, alphaSum * scale};
 }
 

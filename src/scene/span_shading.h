@@ -3,6 +3,10 @@
 #include "scene/shading.h"
 #include "scene/shutter.h"
 
+#include <glm/vec2.hpp>
+
+#include <array>
+
 namespace streak {
 
 // A surface point that moves over the shutter as seen through one pixel sample: a method's
@@ -22,6 +26,10 @@ public:
         return true;
     }
 
+    // The uv corners of the triangle the point is held to, where a box footprint is clipped to
+    // them (TextureFootprint::clipTo); null where the point is not held to one triangle.
+    virtual const std::array<glm::vec2, 3>* uvTriangle() const { return nullptr; }
+
 protected:
     ~MovingSurfacePoint() = default;
 };
@@ -33,6 +41,10 @@ struct SpanShadingSettings {
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
     ShutterWindow window;          ///< the sample's row of the shutter: taps are even in its exposure
+    // The point's footprint (SurfacePoint::duvdx, duvdy) is a region of the screen whose texels
+    // count alike (TextureFootprint::isBox), not one sample's spacing: set where a pixel's
+    // samples share the shading.
+    bool boxFootprint = false;
 };
 
 // The mean shaded colour (and opacity) of a point over [t0, t1] of the shutter: the colour of

@@ -160,9 +160,51 @@ FootprintEllipse footprintEllipse(const glm::vec2& a, const glm::vec2& b) {
 // kMaxAnisotropy taps would be needed along the major one.
 float tapWidth(const FootprintEllipse& e, int maxTaps) { return std::max(e.minor, e.major / float(maxTaps)); }
 
+// Whether a tap lies inside a uv triangle, by its barycentrics (the inverse of the affine map
+// from barycentrics to uv). Everything is inside when there is no triangle or it is degenerate
+// in uv (no inverse).
+class UvTriangleTest {
+public:
+    explicit UvTriangleTest(const std::array<glm::vec2, 3>* corners) {
+        if (!corners) return;
+        const glm::dvec2 a((*corners)[0]), e1 = glm::dvec2((*corners)[1]) - a, e2 = glm::dvec2((*corners)[2]) - a;
+        const double det = e1.x * e2.y - e1.y * e2.x;
+        if (!std::isfinite(det) || det == 0.0) return;
+        m_origin = a, m_edges = {e1, e2}, m_rows = {glm::dvec2(e2.y, -e2.x) / det, glm::dvec2(-e1.y, e1.x) / det};
+        m_isActive = true;
+    }
+    bool operator()(const glm::vec2& uv) const {
+        if (!m_isActive) return true;
+        const glm::dvec3 b = barycentrics(uv);
+        constexpr double kEdge = -1e-6;  // a tap on an edge belongs to both triangles
+        return b.x >= kEdge && b.y >= kEdge && b.z >= kEdge;
+    }
+    // uv held to the triangle: its negative barycentrics dropped, the rest renormalised.
+    glm::vec2 held(const glm::vec2& uv) const {
+        if (!m_isActive) return uv;
+        glm::dvec3 b = glm::max(barycentrics(uv), glm::dvec3(0.0));
+        const double sum = b.x + b.y + b.z;
+        b = sum > 0.0 ? b / sum : glm::dvec3(1.0 / 3.0);
+        return glm::vec2(m_origin + b.y * m_edges[0] + b.z * m_edges[1]);
+    }
+
+private:
+    glm::dvec3 barycentrics(const glm::vec2& uv) const {
+        const glm::dvec2 d = glm::dvec2(uv) - m_origin;
+        const double b1 = glm::dot(m_rows[0], d), b2 = glm::dot(m_rows[1], d);
+        return {1.0 - b1 - b2, b1, b2};
+    }
+
+    bool m_isActive = false;
+    glm::dvec2 m_origin{0.0};
+    std::array<glm::dvec2, 2> m_edges{};
+    std::array<glm::dvec2, 2> m_rows{};
+};
+
 }  // namespace
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
+    if (footprint.isBox) return sampleBox(uv, footprint);
     const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
@@ -174,6 +216,46 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     glm::vec4 sum(0.0f);
     for (int i = 0; i < taps; ++i) sum += trilinearAt(uv + step * (float(i) + 0.5f - 0.5f * float(taps)), lod);
     return sum / float(taps);
+}
+
+glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, float* inside) const {
+    if (inside) *inside = 1.0f;
+    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
+    const glm::vec2 size{float(width()), float(height())};
+    const float lengthX = glm::length(footprint.duvdx * size), lengthY = glm::length(footprint.duvdy * size);
+    if (!std::isfinite(lengthX) || !std::isfinite(lengthY)) return trilinearAt(uv, float(numLevels() - 1));
+    // The finest level (spacing 2^level texels) at which both axes take at most kMaxBoxTaps taps
+    // in all: each axis as many taps as it is spacings long, at least one.
+    const int maxLevel = numLevels() - 1;
+    // minLod is not a box's floor: it widens a lookup for the spacing of the taps along a uv path,
+    // and in every direction, which blurs a box across the motion too (AnimatedCube against
+    // Cycles: 47.6 dB with it, 52.3 dB without).
+    int level = 0;
+    auto tapsAlong = [](float length, float spacing) { return std::max(1, int(std::ceil(length / spacing - 1e-3f))); };
+    int tapsX = 0, tapsY = 0;
+    for (;; ++level) {
+        const float spacing = std::exp2(float(level));
+        tapsX = tapsAlong(lengthX, spacing), tapsY = tapsAlong(lengthY, spacing);
+        if (tapsX * tapsY <= kMaxBoxTaps || level == maxLevel) break;
+    }
+    tapsX = std::min(tapsX, kMaxBoxTaps), tapsY = std::min(tapsY, kMaxBoxTaps / tapsX);
+    const Level& l = (*m_levels)[std::size_t(level)];
+    if (tapsX * tapsY == 1) return bilinearAt(l, uv);
+    const glm::vec2 stepX = footprint.duvdx / float(tapsX), stepY = footprint.duvdy / float(tapsY);
+    const glm::vec2 origin = uv - 0.5f * (footprint.duvdx + footprint.duvdy) + 0.5f * (stepX + stepY);
+    const UvTriangleTest isInside(footprint.clipTo);
+    glm::vec4 sum(0.0f);
+    int used = 0;
+    for (int j = 0; j < tapsY; ++j)
+        for (int i = 0; i < tapsX; ++i) {
+            const glm::vec2 tap = origin + stepX * float(i) + stepY * float(j);
+            if (!isInside(tap)) continue;
+            sum += bilinearAt(l, tap);
+            ++used;
+        }
+    if (inside) *inside = float(used) / float(tapsX * tapsY);
+    // No tap inside (a triangle smaller than their spacing): the centre, which the caller holds to it.
+    return used > 0 ? sum / float(used) : bilinearAt(l, isInside.held(uv));
 }
 
 float Texture::finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const {

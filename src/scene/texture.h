@@ -3,6 +3,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -18,10 +19,24 @@ enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 // Level 0 is the floor whatever minLod says: a tap narrower than a texel filters nothing more,
 // and a span of a still point must shade as its instant does. The default, no area, is a
 // bilinear tap of level 0.
+//
+// isBox asks for a different filter over the same two vectors: the mean of the texture over the
+// parallelogram uv + u duvdx + v duvdy, u and v in [-1/2, 1/2]. That is the footprint of a whole
+// region of the screen (a pixel's samples sharing one shading), whose texels all count alike, where
+// the GPU's ellipse of one sample spacing is a smooth bell twice as wide: on a pixel-wide
+// footprint, a trilinear tap at the level of its width reaches texels a box never sees (the
+// neighbours in a texture atlas).
+//
+// A box may also be clipped to a uv triangle (clipTo, the corners of the triangle its samples
+// see): only the part of the parallelogram inside it counts. Where a pixel straddles a triangle
+// edge that is also a seam of the atlas, the box beyond the edge lies in another chart of the
+// atlas, texels no sample of this triangle sees.
 struct TextureFootprint {
     glm::vec2 duvdx{0.0f};
     glm::vec2 duvdy{0.0f};
     float minLod = 0.0f;
+    bool isBox = false;
+    const std::array<glm::vec2, 3>* clipTo = nullptr;
 };
 
 // Texture is a linear-light RGBA texture with its full mip chain, built once at load time.
@@ -54,6 +69,16 @@ public:
     // the minor axis, so a surface seen at a slant stays sharp across its compressed direction.
     static constexpr int kMaxAnisotropy = 16;
     glm::vec4 sample(const glm::vec2& uv, const TextureFootprint& footprint) const;
+    // The box filter (TextureFootprint::isBox): a grid of bilinear taps over the parallelogram,
+    // at most kMaxBoxTaps, at the finest level whose texels are no narrower than the taps' spacing,
+    // so each tap's texel covers the ground between taps and nothing is aliased (minLod, a
+    // lookup's floor, does not apply). Its mean is the box's; its edges are soft by about one tap spacing. 64 taps
+    // (8 x 8 on a square box) keep the mean within 0.02 of the exact box on a high-contrast atlas
+    // where 16 are 0.06 off (texture_test); one shading per pixel affords them.
+    static constexpr int kMaxBoxTaps = 64;
+    // With inside set, it receives the fraction of the taps within footprint.clipTo (1 without
+    // one): how much of the box the triangle covers, for a caller that weights boxes by it.
+    glm::vec4 sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, float* inside = nullptr) const;
     // The level of the anisotropic taps for a footprint (minLod 0): the finest detail a lookup
     // keeps, so what taps along a uv path must be spaced by not to alias.
     float finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const;

@@ -42,7 +42,7 @@ TEST(PixelShading, SampleRateShadesEveryPieceAtItsSample) {
     Recorder recorder;
     std::vector<glm::vec3> colors(4, glm::vec3(0.0f));
     PixelShadingCounters counters;
-    shading.finish(ShadingRate::Sample, recorder, colors, counters);
+    shading.finish(PixelShadingOptions{ShadingRate::Sample}, recorder, colors, counters);
     ASSERT_EQ(recorder.calls.size(), 4u);
     for (int s = 0; s < 4; ++s) {
         EXPECT_EQ(recorder.calls[std::size_t(s)].site.ndc, sampleNdc(s));
@@ -69,24 +69,55 @@ TEST(PixelShading, OverlappingPiecesShareOneShadingWeightedBySample) {
     Recorder recorder;
     std::vector<glm::vec3> colors(4, glm::vec3(0.0f));
     PixelShadingCounters counters;
-    shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+    // With the GPU lookup's filter: one bell at the samples' centroid.
+    shading.finish(PixelShadingOptions{ShadingRate::Pixel, 4, false}, recorder, colors, counters);
     ASSERT_EQ(recorder.calls.size(), 2u);
     const Call& shared = recorder.calls[0];
     EXPECT_EQ(shared.triangle, 3u);
     EXPECT_EQ(shared.t0, 0.0f);
     EXPECT_EQ(shared.t1, 1.0f);
     EXPECT_TRUE(shared.site.clampToTriangle);
+    EXPECT_FALSE(shared.site.boxFootprint);
     // The exposure-weighted centroid of the four samples.
     glm::dvec2 centroid(0.0);
     double weights = 0.0;
     for (int s = 0; s < 4; ++s) centroid += sampleNdc(s) * double(ends[s]), weights += ends[s];
     EXPECT_NEAR(shared.site.ndc.x, centroid.x / weights, 1e-12);
     EXPECT_NEAR(shared.site.ndc.y, centroid.y / weights, 1e-12);
+    // The samples span 0.03 x 0.06 NDC of a 0.1 pixel: 0.3 x 0.6 pixels, plus a sample spacing,
+    // at most the pixel.
+    EXPECT_NEAR(shared.site.footprintPixels.x, 0.3 + 0.5, 1e-9);
+    EXPECT_NEAR(shared.site.footprintPixels.y, 1.0, 1e-9);
     for (int s = 0; s < 3; ++s) EXPECT_EQ(colors[std::size_t(s)], glm::vec3(4.0f, 0.5f, 0.25f) * ends[s]);
     EXPECT_EQ(colors[3], glm::vec3(4.0f, 0.5f, 0.25f) * 0.4f + glm::vec3(6.0f, 0.5f, 0.25f) * 0.6f);
     EXPECT_EQ(counters.pieces, 5);
     EXPECT_EQ(counters.shadedSpans, 2);
     EXPECT_EQ(counters.visibleTriangles, 2);
+}
+
+// A box footprint (the default) spans the samples' bounds, so it sits at their middle: at the
+// centroid it would reach past the samples on one side and miss them on the other.
+TEST(PixelShading, ABoxFootprintIsCentredOnItsSamplesBounds) {
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(2);
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 1);
+    const float weights[4] = {1.0f, 0.1f, 0.1f, 0.1f};  // a centroid pulled toward sample 0
+    for (int s = 0; s < 4; ++s) {
+        const VisiblePiece piece{3, 0.0f, 1.0f, weights[s], true};
+        shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), kTextured);
+    }
+    Recorder recorder;
+    std::vector<glm::vec3> colors(4, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(PixelShadingOptions{ShadingRate::Pixel, 1}, recorder, colors, counters);
+    ASSERT_EQ(recorder.calls.size(), 1u);
+    const ShadingSite& site = recorder.calls[0].site;
+    EXPECT_TRUE(site.boxFootprint);
+    EXPECT_TRUE(site.clampToTriangle);
+    EXPECT_NEAR(site.ndc.x, 0.5 * (sampleNdc(0).x + sampleNdc(3).x), 1e-12);
+    EXPECT_NEAR(site.ndc.y, 0.5 * (sampleNdc(0).y + sampleNdc(3).y), 1e-12);
+    // At most the cell: one pixel.
+    EXPECT_EQ(site.footprintPixels, glm::dvec2(0.8, 1.0));
 }
 
 TEST(PixelShading, AFastSliverIsShadedOnlyOverTheTimesItsSamplesSeeIt) {
@@ -107,7 +138,7 @@ TEST(PixelShading, AFastSliverIsShadedOnlyOverTheTimesItsSamplesSeeIt) {
     Recorder recorder;
     std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
     PixelShadingCounters counters;
-    shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+    shading.finish(PixelShadingOptions{ShadingRate::Pixel}, recorder, colors, counters);
     EXPECT_GT(recorder.calls.size(), 4u);  // the hull [0.2, 0.362] is not shaded as one
     for (const Call& call : recorder.calls) {
         EXPECT_LE(call.t1 - call.t0, 0.012f * 2.0f + 1e-6f) << "a shading spans more than its pieces";
@@ -133,7 +164,7 @@ TEST(PixelShading, TexturedTrianglesAreShadedPerCellUntexturedOncePerPixel) {
         Recorder recorder;
         std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
         PixelShadingCounters counters;
-        shading.finish(ShadingRate::Pixel, recorder, colors, counters);
+        shading.finish(PixelShadingOptions{ShadingRate::Pixel}, recorder, colors, counters);
         ASSERT_EQ(recorder.calls.size(), textured ? 4u : 1u);
         for (const Call& call : recorder.calls) EXPECT_LE(call.site.footprintPixels.x, textured ? 0.5 : 1.0);
         EXPECT_EQ(counters.visibleTriangles, 1);

@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
 
 namespace streak {
 
@@ -118,6 +122,112 @@ TEST(TextureFootprint, MinLodWidensTheTaps) {
     const glm::vec2 centre(2.0f / 256, 0.5f);
     const TextureFootprint blurred{{1.0f / 256, 0.0f}, {0.0f, 64.0f / 256}, 3.0f};  // 8 texels: two stripes
     EXPECT_NEAR(vertical.sample(centre, blurred).x, vertical.sample(centre, 3.0f).x, 1e-5f);
+}
+
+}  // namespace streak
+
+namespace streak {
+
+namespace {
+
+// The box mean of the bilinear level-0 texture over the parallelogram uv + u dx + v dy, u and v
+// in [-1/2, 1/2], by brute force: the independent reference for TextureFootprint::isBox. With
+// `keep`, only over the points it keeps, and `kept` receives their fraction.
+template <class Keep>
+glm::vec4 bruteForceBox(const Texture& tex, glm::vec2 uv, glm::vec2 dx, glm::vec2 dy, Keep&& keep, float* kept = nullptr) {
+    constexpr int kSteps = 96;
+    glm::vec4 sum(0.0f);
+    int count = 0;
+    for (int j = 0; j < kSteps; ++j)
+        for (int i = 0; i < kSteps; ++i) {
+            const float u = (float(i) + 0.5f) / kSteps - 0.5f, v = (float(j) + 0.5f) / kSteps - 0.5f;
+            const glm::vec2 p = uv + u * dx + v * dy;
+            if (!keep(p)) continue;
+            sum += tex.sampleBilinear(p, 0);
+            ++count;
+        }
+    if (kept) *kept = float(count) / float(kSteps * kSteps);
+    return count > 0 ? sum / float(count) : glm::vec4(0.0f);
+}
+glm::vec4 bruteForceBox(const Texture& tex, glm::vec2 uv, glm::vec2 dx, glm::vec2 dy) {
+    return bruteForceBox(tex, uv, dx, dy, [](glm::vec2) { return true; });
+}
+
+// Checks of 3 texels, with a bright 2-texel border every 32 texels: the detail an atlas packs.
+Texture checksAndBorders() {
+    constexpr int kSize = 128;
+    std::vector<glm::vec4> texels(kSize * kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const float check = ((x / 3 + y / 3) % 2 == 0) ? 0.8f : 0.2f;
+            const bool border = x % 32 < 2 || y % 32 < 2;
+            texels[std::size_t(y) * kSize + x] = glm::vec4(border ? 4.0f : check);
+        }
+    return Texture::fromLinear(kSize, kSize, texels);
+}
+
+}  // namespace
+
+// A box footprint averages the texels of its parallelogram: within 0.03 of the brute-force mean
+// on footprints 1 to 24 texels wide, at any slant, and closer to it than the GPU lookup of the
+// same footprint (whose bell reaches twice as far: here into the bright borders).
+TEST(TextureFootprint, BoxIsTheMeanOverItsParallelogram) {
+    const Texture tex = checksAndBorders();
+    std::uint32_t state = 12345u;
+    auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+    double boxError = 0.0, lookupError = 0.0, worst = 0.0;
+    constexpr int kCases = 300;
+    for (int c = 0; c < kCases; ++c) {
+        const float width = 1.0f + 23.0f * uniform(), aspect = 0.3f + 0.7f * uniform(), angle = 6.2831853f * uniform();
+        const glm::vec2 axis(std::cos(angle), std::sin(angle));
+        const glm::vec2 dx = axis * width / 128.0f, dy = glm::vec2(-axis.y, axis.x) * width * aspect / 128.0f;
+        const glm::vec2 uv(uniform(), uniform());
+        const float truth = bruteForceBox(tex, uv, dx, dy).x;
+        const float box = tex.sample(uv, TextureFootprint{dx, dy, 0.0f, true}).x;
+        const float lookup = tex.sample(uv, TextureFootprint{dx, dy}).x;
+        boxError += std::abs(box - truth), lookupError += std::abs(lookup - truth);
+        worst = std::max(worst, double(std::abs(box - truth)));
+    }
+    boxError /= kCases, lookupError /= kCases;
+    EXPECT_LT(boxError, 0.03);
+    EXPECT_LT(boxError, 0.5 * lookupError) << "box " << boxError << ", lookup " << lookupError;
+    std::printf("box footprint: mean error %.4f (worst %.4f), GPU lookup %.4f\n", boxError, worst, lookupError);
+    // A footprint within one texel is one bilinear tap.
+    const glm::vec2 uv(0.37f, 0.61f), small(0.4f / 128.0f, 0.0f);
+    EXPECT_EQ(tex.sample(uv, TextureFootprint{small, glm::vec2(small.y, small.x), 0.0f, true}), tex.sampleBilinear(uv, 0));
+}
+
+// Clipped to a uv triangle, a box averages only the texels inside it, and says how much of the
+// box that is: on the texture of an atlas, a triangle whose edge crosses the box must not see
+// the texels beyond its edge. Brute force over box and triangle is the reference.
+TEST(TextureFootprint, ClippedBoxIsTheMeanOverItsPartInsideTheTriangle) {
+    const Texture tex = checksAndBorders();
+    // A triangle whose long edge runs next to the bright border at x = 64 texels: the boxes
+    // straddle it, so an unclipped box sees the border and a clipped one must not.
+    const std::array<glm::vec2, 3> triangle{glm::vec2(0.30f, 0.20f), glm::vec2(0.49f, 0.20f), glm::vec2(0.49f, 0.80f)};
+    auto inside = [&](glm::vec2 p) {
+        auto side = [](glm::vec2 a, glm::vec2 b, glm::vec2 q) { return (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x); };
+        const float d0 = side(triangle[0], triangle[1], p), d1 = side(triangle[1], triangle[2], p), d2 = side(triangle[2], triangle[0], p);
+        return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+    };
+    double clippedError = 0.0, unclippedError = 0.0, coverageError = 0.0;
+    constexpr int kCases = 40;
+    for (int c = 0; c < kCases; ++c) {
+        const float width = 4.0f + 0.25f * float(c);  // 4 to 14 texels
+        const glm::vec2 dx(width / 128.0f, 0.0f), dy(0.0f, width / 128.0f);
+        const glm::vec2 uv(0.49f - 0.3f * width / 128.0f, 0.3f + 0.012f * float(c));
+        float kept = 0.0f, inside01 = 0.0f;
+        const float truth = bruteForceBox(tex, uv, dx, dy, inside, &kept).x;
+        const float clipped = tex.sampleBox(uv, TextureFootprint{dx, dy, 0.0f, true, &triangle}, &inside01).x;
+        const float unclipped = tex.sample(uv, TextureFootprint{dx, dy, 0.0f, true}).x;
+        clippedError += std::abs(clipped - truth), unclippedError += std::abs(unclipped - truth);
+        coverageError += std::abs(inside01 - kept);
+    }
+    clippedError /= kCases, unclippedError /= kCases, coverageError /= kCases;
+    std::printf("clipped box: mean error %.4f, unclipped %.4f, coverage error %.4f\n", clippedError, unclippedError, coverageError);
+    EXPECT_LT(clippedError, 0.05);
+    EXPECT_LT(clippedError, 0.25 * unclippedError);
+    EXPECT_LT(coverageError, 0.05);
 }
 
 }  // namespace streak

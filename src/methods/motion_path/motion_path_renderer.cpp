@@ -431,7 +431,7 @@ private:
                 });
             }
             scratch.pixelShading.finish(
-                options.shading.rate,
+                options.shading,
                 [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site) {
                     return frame.shade(triangle, t0, t1, site, window, scratch.movingTriangles);
                 },
