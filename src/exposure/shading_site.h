@@ -1,9 +1,10 @@
 #pragma once
 
+#include "scene/barycentric.h"
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include <algorithm>
 #include <array>
 
 namespace streak::exposure {
@@ -28,14 +29,6 @@ struct ShadingSite {
 
 // Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.
 inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false, false}; }
-
-// Barycentrics held to the triangle: negative weights dropped, the rest renormalised.
-inline glm::dvec3 clampedBarycentrics(const glm::dvec3& b) {
-    if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0) return b;
-    const glm::dvec3 c(std::max(b.x, 0.0), std::max(b.y, 0.0), std::max(b.z, 0.0));
-    const double sum = c.x + c.y + c.z;
-    return sum > 0.0 ? c / sum : glm::dvec3(1.0 / 3.0);
-}
 
 // The uv at barycentrics b held to the triangle, into `uv`, when b lies outside it; false (uv
 // untouched) when b is inside and the caller's own exact uv stands.

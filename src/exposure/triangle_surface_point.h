@@ -5,7 +5,7 @@
 #include "exposure/triangle_cache.h"
 #include "raster/moving_triangle.h"
 #include "raster/screen_triangle.h"
-#include "scene/span_shading.h"
+#include "exposure/span_shading.h"
 
 #include <glm/vec2.hpp>
 

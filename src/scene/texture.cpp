@@ -1,5 +1,7 @@
 #include "scene/texture.h"
 
+#include "scene/barycentric.h"
+
 #include "image/color.h"
 #include "util/error.h"
 
@@ -179,12 +181,10 @@ public:
         constexpr double kEdge = -1e-6;  // a tap on an edge belongs to both triangles
         return b.x >= kEdge && b.y >= kEdge && b.z >= kEdge;
     }
-    // uv held to the triangle: its negative barycentrics dropped, the rest renormalised.
+    // uv held to the triangle (clampedBarycentrics).
     glm::vec2 held(const glm::vec2& uv) const {
         if (!m_isActive) return uv;
-        glm::dvec3 b = glm::max(barycentrics(uv), glm::dvec3(0.0));
-        const double sum = b.x + b.y + b.z;
-        b = sum > 0.0 ? b / sum : glm::dvec3(1.0 / 3.0);
+        const glm::dvec3 b = clampedBarycentrics(barycentrics(uv));
         return glm::vec2(m_origin + b.y * m_edges[0] + b.z * m_edges[1]);
     }
 
@@ -240,10 +240,16 @@ glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footpr
     }
     tapsX = std::min(tapsX, kMaxBoxTaps), tapsY = std::min(tapsY, kMaxBoxTaps / tapsX);
     const Level& l = (*m_levels)[std::size_t(level)];
-    if (tapsX * tapsY == 1) return bilinearAt(l, uv);
+    const UvTriangleTest isInside(footprint.clipTo);
+    if (tapsX * tapsY == 1) {
+        // One tap: the centre, held to the triangle when it falls outside (as the caller's uv
+        // is not held for a box), and its coverage all or nothing like any other tap.
+        const bool isCentreInside = isInside(uv);
+        if (inside) *inside = isCentreInside ? 1.0f : 0.0f;
+        return bilinearAt(l, isCentreInside ? uv : isInside.held(uv));
+    }
     const glm::vec2 stepX = footprint.duvdx / float(tapsX), stepY = footprint.duvdy / float(tapsY);
     const glm::vec2 origin = uv - 0.5f * (footprint.duvdx + footprint.duvdy) + 0.5f * (stepX + stepY);
-    const UvTriangleTest isInside(footprint.clipTo);
     glm::vec4 sum(0.0f);
     int used = 0;
     for (int j = 0; j < tapsY; ++j)

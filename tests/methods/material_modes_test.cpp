@@ -66,7 +66,7 @@ TEST(MaterialModes, MovingMaskAveragesToCoverage) {
     // A Mask quad of four-pixel stripes (alpha 1 on four texels, 0 on the next four) slides 8
     // pixels over a blue backdrop. Each pixel sees white for half the shutter: (0.5, 0.5, 1).
     // The methods that shade time spans (motion-path, analytic) average the cut alphas of a few
-    // texture taps per texel of path (scene/span_shading), split between the quad's two
+    // texture taps per texel of path (exposure/span_shading), split between the quad's two
     // triangles, so they get within 1/8; the reference methods sample 256 or 64 instants per
     // pixel, within 1/32.
     const test::PixelCamera c2{16, 4, 2.0f}, c4{16, 4, 4.0f};

@@ -230,4 +230,23 @@ TEST(TextureFootprint, ClippedBoxIsTheMeanOverItsPartInsideTheTriangle) {
     EXPECT_LT(coverageError, 0.05);
 }
 
+// A box under one texel is one tap at its centre, clipped like any other: a centre beyond the
+// triangle's edge counts nothing inside and reads the triangle's nearest texels, never the next
+// chart of an atlas (here the bright border) at full weight; a centre inside is the plain tap.
+TEST(TextureFootprint, AOneTapBoxIsClippedToTheTriangle) {
+    const Texture tex = checksAndBorders();
+    const std::array<glm::vec2, 3> triangle{glm::vec2(0.30f, 0.20f), glm::vec2(0.49f, 0.20f), glm::vec2(0.49f, 0.80f)};
+    const glm::vec2 dx(0.5f / 128.0f, 0.0f), dy(0.0f, 0.5f / 128.0f);
+    const glm::vec2 beyond(0.506f, 0.5f);  // on the border at texel x = 64.8, past the edge at 62.7
+    ASSERT_GT(tex.sampleBox(beyond, TextureFootprint{dx, dy, 0.0f, true}).x, 3.0f);
+    float inside = -1.0f;
+    const float clipped = tex.sampleBox(beyond, TextureFootprint{dx, dy, 0.0f, true, &triangle}, &inside).x;
+    EXPECT_EQ(inside, 0.0f);
+    EXPECT_LT(clipped, 1.0f);
+    const glm::vec2 within(0.45f, 0.5f);
+    const float plain = tex.sampleBox(within, TextureFootprint{dx, dy, 0.0f, true}).x;
+    EXPECT_EQ(tex.sampleBox(within, TextureFootprint{dx, dy, 0.0f, true, &triangle}, &inside).x, plain);
+    EXPECT_EQ(inside, 1.0f);
+}
+
 }  // namespace streak

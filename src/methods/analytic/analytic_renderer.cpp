@@ -132,7 +132,7 @@ private:
         raster::Viewport viewport;
         raster::SamplePattern pattern;
         std::optional<exposure::SegmentedGeometry> segmented;
-        SpanShadingSettings spanShading;
+        exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
 
         void computeBounds() { bounds = segmented->screenBounds(viewport); }
@@ -140,7 +140,7 @@ private:
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
                           exposure::MovingTriangleCache& cache) const {
-            SpanShadingSettings rowShading = spanShading;
+            exposure::SpanShadingSettings rowShading = spanShading;
             rowShading.window = scene.shutter.rowWindow(row, viewport.height);
             return exposure::shadeTriangleSpan(*segmented, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
         }

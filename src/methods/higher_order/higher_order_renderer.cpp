@@ -167,7 +167,7 @@ private:
         raster::Viewport viewport;
         raster::SamplePattern pattern;
         std::optional<exposure::CurvedGeometry> geometry;
-        SpanShadingSettings spanShading;
+        exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> boxes;   ///< numBoxes per segment (traversal)
         std::vector<raster::PixelBounds> bounds;  ///< per segment: the union of its boxes, for binning
         int numBoxes = 1;
@@ -175,7 +175,7 @@ private:
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
                           exposure::CurvedTriangleCache& cache) const {
-            SpanShadingSettings rowShading = spanShading;
+            exposure::SpanShadingSettings rowShading = spanShading;
             rowShading.window = scene.shutter.rowWindow(row, viewport.height);
             return exposure::shadeCurvedSpan(*geometry, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
         }

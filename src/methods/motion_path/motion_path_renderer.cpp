@@ -201,7 +201,7 @@ private:
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, const ShutterWindow& window,
                           exposure::MovingTriangleCache& cache) const {
-            SpanShadingSettings rowShading = spanShading;
+            exposure::SpanShadingSettings rowShading = spanShading;
             rowShading.window = window;
             return exposure::shadeTriangleSpan(segmented, viewport, settings.shading, rowShading, triangle, t0, t1, site, cache);
         }
@@ -214,7 +214,7 @@ private:
         exposure::SegmentedGeometry segmented;
         const FlatGeometry& geometry;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
-        SpanShadingSettings spanShading;
+        exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
     };
 

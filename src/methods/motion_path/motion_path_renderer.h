@@ -15,7 +15,7 @@ namespace streak {
 // fragments. Each span becomes an interval whose depth is taken at its ends. Intervals are
 // sorted in depth-time (split at crossings, then Hong & Oh's four tests) and resolved with time
 // masks; only the visible ones are then shaded, with the texture averaged along the interval
-// (section 4.4) and the lighting averaged over it (scene/span_shading.h).
+// (section 4.4) and the lighting averaged over it (exposure/span_shading.h).
 //
 // Beyond the paper:
 // - The sides are conservative convex hulls rather than bilinear fans, so folding sides (fast

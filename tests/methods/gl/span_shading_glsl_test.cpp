@@ -32,7 +32,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     const Scene scene = makeBuiltinScene(GetParam(), {});
     const int width = 96, height = 72, curveSegments = 4;
     const ShadingMode shading = ShadingMode::Phong;
-    SpanShadingSettings settings;
+    exposure::SpanShadingSettings settings;
     settings.maxTextureTaps = 32;
     settings.tapsPerTexel = 2.0f;
 

@@ -1,4 +1,4 @@
-// Span shading, the GLSL twin of scene/span_shading.cpp with exposure/triangle_surface_point:
+// Span shading, the GLSL twin of exposure/span_shading.cpp with exposure/triangle_surface_point:
 // the mean colour and alpha of a triangle under one sample over [t0, t1]. Texture taps sit at
 // exact times along the uv path (a ratio of quadratics), as many as the footprint's mip level
 // needs, at most u_textureSamples (past which the level rises to length / k); lighting is

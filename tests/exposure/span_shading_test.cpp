@@ -1,4 +1,4 @@
-#include "scene/span_shading.h"
+#include "exposure/span_shading.h"
 #include "support/test_scenes.h"
 
 #include <glm/geometric.hpp>
@@ -8,7 +8,7 @@
 #include <functional>
 #include <optional>
 
-namespace streak {
+namespace streak::exposure {
 
 namespace {
 
@@ -159,4 +159,4 @@ TEST(ShadeTimeSpan, OpacityIsTheMeanTextureAlphaTimesTheMaterials) {
     EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point).alpha, 0.5f, 0.04f);
 }
 
-}  // namespace streak
+}  // namespace streak::exposure

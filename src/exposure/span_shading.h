@@ -7,7 +7,7 @@
 
 #include <array>
 
-namespace streak {
+namespace streak::exposure {
 
 // A surface point that moves over the shutter as seen through one pixel sample: a method's
 // geometry (a moving triangle under a sample) behind one interface, so the shading below is
@@ -67,4 +67,4 @@ struct SpanShadingSettings {
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings = {});
 
-}  // namespace streak
+}  // namespace streak::exposure

@@ -1,4 +1,4 @@
-#include "scene/span_shading.h"
+#include "exposure/span_shading.h"
 
 #include <glm/geometric.hpp>
 
@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-namespace streak {
+namespace streak::exposure {
 
 namespace {
 
@@ -159,4 +159,4 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     return {material.baseColor * glm::vec3(vertexColor) * sum * scale + specularSum * scale, alphaSum * scale};
 }
 
-}  // namespace streak
+}  // namespace streak::exposure
