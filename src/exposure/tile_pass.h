@@ -6,6 +6,8 @@
 #include "exposure/visible_pieces.h"
 #include "raster/sample_pattern.h"
 #include "raster/tile_grid.h"
+#include "scene/flat_geometry.h"
+#include "scene/scene.h"
 #include "util/progress.h"
 #include "util/stats.h"
 
@@ -13,6 +15,8 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <chrono>
+#include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -79,6 +83,71 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
     for (int py = rect.y0; py <= rect.y1; ++py)
         for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * std::size_t(width) + std::size_t(px)] = glm::vec3(0.0f);
     raster::addTileToImage(rect, spp, color, 1.0f, image, width);
+}
+
+// One exposure interval of an exact method waiting in its tile for its sample's list.
+struct TileRecord {
+    std::uint32_t sample = 0;  ///< within the tile
+    ExposureInterval interval;
+};
+
+// How an exact method resolves and shades its samples: the options of sample_resolve and
+// pixel_shading it offers (each method parses its own).
+struct ExactResolveOptions {
+    int maxIntervals = 0;  ///< the compression budget; 0: unlimited
+    OracleWeights oracle;
+    bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
+    PixelShadingOptions shading;
+};
+
+// What one thread of an exact method keeps from tile to tile: the tile's interval records, then
+// grouped by sample, the buffers of the resolve and the pixel shading, the method's cache of
+// its triangles' equations (Cache) and its counters (Counters, with a SampleResolveCounters
+// `resolve` and the seconds spent finding intervals, `intervalSeconds`).
+template <class Cache, class Counters>
+struct ExactTileScratch {
+    std::vector<TileRecord> records, bySample;
+    std::vector<std::uint32_t> runs;
+    std::vector<ExposureInterval> list;
+    SampleResolveScratch resolve;
+    PixelShading pixelShading;
+    std::vector<glm::vec3> color;
+    Cache cache;
+    Counters counters;
+};
+
+// The exact depth of interval source `source` at shutter time t under the sample at ndc, for
+// measuring the linear depths' misordering (--option check-depth-order).
+using ExactDepthOfSource = std::function<double(std::uint32_t source, float t, const glm::dvec2& ndc)>;
+
+// The shared second half of an exact method's tile, once its intervals are in scratch.records
+// (their search began at intervalStart, and is timed up to their grouping): groups them by
+// sample, resolves every sample exactly (resolveSample, compressing to the budget) and shades
+// what shows (resolveTile: per sample, or per pixel as options.shading says). The method
+// supplies triangleOf(source) and shade(triangle, t0, t1, ShadingSite, pixel row) ->
+// ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`.
+template <class Cache, class Counters, class TriangleOf, class Shade>
+void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
+                      const std::vector<FlatTriangle>& triangles, int width, int height, const ExactResolveOptions& options,
+                      std::chrono::steady_clock::time_point intervalStart, ExactTileScratch<Cache, Counters>& scratch,
+                      std::vector<glm::vec3>& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr) {
+    const std::size_t numSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(rect.y1 - rect.y0 + 1) * std::size_t(pattern.count());
+    raster::groupBySample(std::span<const TileRecord>(scratch.records), numSamples, scratch.runs, scratch.bySample);
+    scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - intervalStart).count();
+
+    auto materialOf = [&](std::uint32_t triangle) -> const Material& { return scene.materials[triangles[triangle].material]; };
+    resolveTile(rect, pattern, width, height, scene.background, std::span<const TileRecord>(scratch.bySample),
+                std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
+                options.shading, scratch.pixelShading, scratch.counters.resolve, [&](std::uint32_t triangle) { return materialOf(triangle).baseColorTexture >= 0; },
+                [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
+        std::optional<ExactDepth> depth;
+        if (exactDepth) depth = [&](std::size_t k, float t) { return (*exactDepth)(list[k].source, t, ndc); };
+        return resolveSample(
+            list, options.maxIntervals, options.oracle, depth ? &*depth : nullptr, options.occlusionCull, scene.shutter.rowWindow(row, height),
+            scene.background, triangleOf, [&](std::uint32_t triangle) { return materialOf(triangle).isTranslucent(); },
+            [&](std::uint32_t triangle, float t0, float t1) { return shade(triangle, t0, t1, sampleSite(ndc, pattern.samplesPerAxis()), row); },
+            scratch.resolve, scratch.counters.resolve);
+    }, shade);
 }
 
 }  // namespace streak::exposure

@@ -28,21 +28,12 @@ using exposure::ExposureInterval;
 constexpr int kTileSize = 16;
 
 struct Options {
-    int maxIntervals = 0;  ///< 0: unlimited
-    exposure::OracleWeights oracle;
+    exposure::ExactResolveOptions resolve;
     bool tileCull = true;  ///< skip the tiles, and the samples of a box, a segment stays outside
-    bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
     bool checkDepthOrder = false;
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
     int curveSegments = 4;
-    exposure::PixelShadingOptions shading;
-};
-
-// One interval waiting in its tile for its sample's list.
-struct Record {
-    std::uint32_t sample = 0;  ///< within the tile
-    ExposureInterval interval;
 };
 
 struct Counters {
@@ -52,20 +43,8 @@ struct Counters {
     exposure::SampleResolveCounters resolve;
 };
 
-struct TileScratch {
-    std::vector<Record> records, bySample;
-    std::vector<std::uint32_t> runs;
-    std::vector<ExposureInterval> list;
-    exposure::SampleResolveScratch resolve;
-    exposure::PixelShading pixelShading;
-    std::vector<glm::vec3> color;
-    exposure::MovingTriangleCache movingTriangles;  ///< the tile's segments' edge equations
-    Counters counters;
-};
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+// Its cache: the tile's segments' edge equations.
+using TileScratch = exposure::ExactTileScratch<exposure::MovingTriangleCache, Counters>;
 
 class AnalyticRenderer final : public Renderer {
 public:
@@ -98,8 +77,8 @@ public:
         }
         RenderStats& stats = context.stats;
         const double numPixels = double(settings.width) * settings.height, numSamples = numPixels * frame.pattern.count();
-        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.maxIntervals,
-                                     m_options.shading);
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.resolve.maxIntervals,
+                                     m_options.resolve.shading);
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
@@ -173,9 +152,8 @@ private:
     void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
         using Clock = std::chrono::steady_clock;
         const raster::PixelBounds rect = grid.tileBounds(tile);
-        const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
+        const int tileWidth = rect.x1 - rect.x0 + 1;
         const int spp = frame.pattern.count();
-        const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
         const Scene& scene = frame.scene;
         const auto segments = frame.segmented->segments();
         const auto& triangles = frame.segmented->flat().triangles();
@@ -183,9 +161,9 @@ private:
         Counters& counters = scratch.counters;
 
         // Intervals: every sample in each segment's box solves the segment's edge equations.
-        auto start = Clock::now();
+        const auto start = Clock::now();
         scratch.records.clear();
-        scratch.movingTriangles.clear();
+        scratch.cache.clear();
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
         for (const std::uint32_t index : grid.items(tile)) {
@@ -194,7 +172,7 @@ private:
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
             if (region.empty()) continue;
-            const raster::MovingTriangle& moving = scratch.movingTriangles.get(*frame.segmented, index);
+            const raster::MovingTriangle& moving = scratch.cache.get(*frame.segmented, index);
             if (frame.options.tileCull) {
                 ++counters.tileTests;
                 if (isOutsideTile(segment, moving, tileLo, tileHi)) {
@@ -224,7 +202,7 @@ private:
                                 ++counters.culledBackFacing;
                                 continue;
                             }
-                            Record r;
+                            exposure::TileRecord r;
                             r.sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
                             const double dt = double(segment.t1) - double(segment.t0);
                             r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
@@ -234,34 +212,18 @@ private:
                         }
                     }
         }
-        raster::groupBySample(std::span<const Record>(scratch.records), numSamples, scratch.runs, scratch.bySample);
-        counters.intervalSeconds += secondsSince(start);
-
-        // Per sample: resolve the intervals exactly and shade what shows (exposure::resolveSample).
-        exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
-                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
-                              frame.options.shading, scratch.pixelShading, counters.resolve,
-                              [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].baseColorTexture >= 0; },
-                              [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
-            const ShutterWindow window = scene.shutter.rowWindow(row, height);
-            std::optional<exposure::ExactDepth> exactDepth;
-            if (frame.options.checkDepthOrder)
-                exactDepth = [&](std::size_t k, float t) {
-                    const exposure::TriangleSegment& s = segments[list[k].source];
-                    return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
-                };
-            return exposure::resolveSample(
-                list, frame.options.maxIntervals, frame.options.oracle, exactDepth ? &*exactDepth : nullptr, frame.options.occlusionCull,
-                window, scene.background,
-                [&](std::uint32_t source) { return segments[source].triangle; },
-                [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
-                [&](std::uint32_t triangle, float t0, float t1) {
-                    return frame.shade(triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), row, scratch.movingTriangles);
-                },
-                scratch.resolve, counters.resolve);
-        }, [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
-            return frame.shade(triangle, t0, t1, site, row, scratch.movingTriangles);
-        });
+        // Per sample: resolve the intervals exactly and shade what shows.
+        const exposure::ExactDepthOfSource exactDepth = [&](std::uint32_t source, float t, const glm::dvec2& ndc) {
+            const exposure::TriangleSegment& s = segments[source];
+            return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
+        };
+        exposure::resolveExactTile(
+            rect, frame.pattern, scene, triangles, width, height, frame.options.resolve, start, scratch, image,
+            [&](std::uint32_t source) { return segments[source].triangle; },
+            [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
+                return frame.shade(triangle, t0, t1, site, row, scratch.cache);
+            },
+            frame.options.checkDepthOrder ? &exactDepth : nullptr);
     }
 
     Options m_options;
@@ -271,7 +233,7 @@ private:
 
 std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     Options o;
-    o.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
+    o.resolve.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
     const std::string weights = options.getString("oracle-weights", "");
     if (!weights.empty()) {
         std::istringstream in(weights);
@@ -283,15 +245,15 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
                 throw Error("method 'analytic': oracle-weights must be five non-negative numbers h1,...,h5, got '" + weights + "'");
         }
         if (!(in >> std::ws).eof()) throw Error("method 'analytic': oracle-weights must be five numbers, got '" + weights + "'");
-        o.oracle = {h[0], h[1], h[2], h[3], h[4]};
+        o.resolve.oracle = {h[0], h[1], h[2], h[3], h[4]};
     }
     o.tileCull = options.getInt("tile-cull", 1, 0, 1) != 0;
-    o.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
+    o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
     o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
-    o.shading = exposure::pixelShadingOptions(options, "analytic");
+    o.resolve.shading = exposure::pixelShadingOptions(options, "analytic");
     return std::make_unique<AnalyticRenderer>(o);
 }
 

@@ -39,17 +39,10 @@ struct Options {
     raster::RootSolver solver = raster::RootSolver::ClosedForm;
     int cameraOrder = 3;
     double depthTolerance = 1e-3;
-    int maxIntervals = 0;
+    exposure::ExactResolveOptions resolve;
     int checkVisibility = 0;
-    bool occlusionCull = true;  ///< drop wholly hidden intervals before the resolve
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
-    exposure::PixelShadingOptions shading;
-};
-
-struct Record {
-    std::uint32_t sample = 0;  ///< within the tile
-    ExposureInterval interval;
 };
 
 struct Counters {
@@ -60,20 +53,8 @@ struct Counters {
     exposure::SampleResolveCounters resolve;
 };
 
-struct TileScratch {
-    std::vector<Record> records, bySample;
-    std::vector<std::uint32_t> runs;
-    std::vector<ExposureInterval> list;
-    exposure::SampleResolveScratch resolve;
-    exposure::PixelShading pixelShading;
-    std::vector<glm::vec3> color;
-    exposure::CurvedTriangleCache curved;
-    Counters counters;
-};
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+// Its cache: the tile's curved triangles.
+using TileScratch = exposure::ExactTileScratch<exposure::CurvedTriangleCache, Counters>;
 
 bool contains(const raster::PixelBounds& b, int x, int y) { return x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1; }
 
@@ -124,7 +105,7 @@ public:
         RenderStats& stats = context.stats;
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, double(settings.width) * settings.height,
-                                     m_options.maxIntervals, m_options.shading);
+                                     m_options.resolve.maxIntervals, m_options.resolve.shading);
         stats.setCounter("motion_order", frame.geometry->order());
         stats.setCounter("motion_fitted", frame.geometry->isFitted() ? 1.0 : 0.0);
         stats.setCounter("pieces_per_triangle", frame.geometry->numPieces());
@@ -268,8 +249,6 @@ private:
         const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
-        const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
-        const Scene& scene = frame.scene;
         const exposure::CurvedGeometry& geometry = *frame.geometry;
         const auto segments = geometry.segments();
         const auto& triangles = geometry.flat().triangles();
@@ -278,13 +257,13 @@ private:
 
         const auto start = Clock::now();
         scratch.records.clear();
-        scratch.curved.clear();
+        scratch.cache.clear();
         for (const std::uint32_t index : grid.items(tile)) {
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
             if (region.empty()) continue;
-            const raster::CurvedTriangle& curved = exposure::curvedTriangleOf(geometry, index, scratch.curved);
+            const raster::CurvedTriangle& curved = exposure::curvedTriangleOf(geometry, index, scratch.cache);
             const bool isTile = frame.options.traversal == Traversal::Tile;
             const int block = isTile ? frame.options.tilePixels : std::max(tileWidth, tileHeight);
             // TILE: the Triangle-Tile test's corner slefes, once per segment and tile.
@@ -310,26 +289,12 @@ private:
                         }
                 }
         }
-        raster::groupBySample(std::span<const Record>(scratch.records), numSamples, scratch.runs, scratch.bySample);
-        counters.intervalSeconds += secondsSince(start);
-
-        exposure::resolveTile(rect, frame.pattern, width, height, scene.background, std::span<const Record>(scratch.bySample),
-                              std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
-                              frame.options.shading, scratch.pixelShading, counters.resolve,
-                              [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].baseColorTexture >= 0; },
-                              [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
-            return exposure::resolveSample(
-                list, frame.options.maxIntervals, exposure::OracleWeights{}, nullptr, frame.options.occlusionCull,
-                scene.shutter.rowWindow(row, height), scene.background,
-                [&](std::uint32_t source) { return segments[source].triangle; },
-                [&](std::uint32_t triangle) { return scene.materials[triangles[triangle].material].isTranslucent(); },
-                [&](std::uint32_t triangle, float t0, float t1) {
-                    return frame.shade(triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), row, scratch.curved);
-                },
-                scratch.resolve, counters.resolve);
-        }, [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
-            return frame.shade(triangle, t0, t1, site, row, scratch.curved);
-        });
+        exposure::resolveExactTile(
+            rect, frame.pattern, frame.scene, triangles, width, height, frame.options.resolve, start, scratch, image,
+            [&](std::uint32_t source) { return segments[source].triangle; },
+            [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
+                return frame.shade(triangle, t0, t1, site, row, scratch.cache);
+            });
     }
 
     // Gribel et al. 2013's visibility accuracy: at seeded random (sample, time) pairs, whether the
@@ -411,12 +376,12 @@ std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options) {
     else throw Error("method 'higher-order': solver must be closed-form or clipping, got '" + solver + "'");
     o.cameraOrder = options.getInt("camera-order", 3, 1, raster::CurvedTriangle::kMaxOrder);
     o.depthTolerance = options.getDouble("depth-tolerance", 1e-3, 0.0, 1.0);
-    o.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
+    o.resolve.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
     o.checkVisibility = options.getInt("check-visibility", 0, 0, 20000);
-    o.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
+    o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
-    o.shading = exposure::pixelShadingOptions(options, "higher-order");
+    o.resolve.shading = exposure::pixelShadingOptions(options, "higher-order");
     return std::make_unique<HigherOrderRenderer>(o);
 }
 
