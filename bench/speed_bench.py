@@ -9,6 +9,10 @@ of the repeats; with --baseline OLD_STREAK (a build of the commit before a chang
 own libstreak.so beside it) both binaries are timed in the same run, alternating, and the images
 compared (PSNR between them: inf when the change is exact).
 
+Section static: the exact methods on the static cases against one accumulation pass at the same
+--aa (a static scene's exact answer: issue 28's target is at most 1.3 times it), per sample and
+per pixel shading, with --baseline the build before a change beside them.
+
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
 Section memory: peak resident memory of each method (the process's maxrss) on the profile's
@@ -21,7 +25,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,threads,memory,resolution] [--repeats 3] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,threads,memory,resolution] [--repeats 3] [--plot docs]
 """
 import argparse
 import json
@@ -108,6 +112,28 @@ def profile(args, tmp):
                 print()
 
 
+def static(args, tmp):
+    print("### Static scenes against one accumulation pass (render ms, least of the repeats; in brackets / accumulation)\n")
+    binaries = [("this build", args.streak)] + ([("baseline", args.baseline)] if args.baseline else [])
+    exact = [(f"{m}{', ' + label if label != 'this build' else ''}{', shading=pixel' if pixel else ''}", binary, m, pixel)
+             for m in ("motion-path", "analytic") for label, binary in binaries for pixel in (False, True)]
+    print("| scene | accumulation --samples 1 | " + " | ".join(name for name, *_ in exact) + " |")
+    print("|---|" + "---:|" * (len(exact) + 1))
+    for case, case_args in CASES[2:]:
+        if not os.path.exists(case_args[0]):
+            continue
+        def least(binary, method_args_):
+            return min(run(binary, case_args, method_args_, os.path.join(tmp, "st.exr"), os.path.join(tmp, "s.json"))[0]["time_ms"]["render"]
+                       for _ in range(args.repeats))
+        base = least(args.streak, ["-m", "accumulation", "--samples", "1"])
+        cells = []
+        for _, binary, method, pixel in exact:
+            ms = least(binary, ["-m", method] + (["--option", "shading=pixel"] if pixel else []))
+            cells.append(f"{ms:.0f} ({ms / base:.2f})")
+        print(f"| {case} | {base:.0f} | " + " | ".join(cells) + " |", flush=True)
+    print()
+
+
 def threads(args, tmp):
     print("### Thread scaling (render ms, least of the repeats)\n")
     print("| scene | method | 1 thread | 2 threads | scaling |")
@@ -172,12 +198,12 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--streak", default="build/streak")
     parser.add_argument("--baseline", default="")
-    parser.add_argument("--sections", default="profile,threads,memory,resolution")
+    parser.add_argument("--sections", default="profile,static,threads,memory,resolution")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "threads": threads, "memory": memory, "resolution": resolution}
+    sections = {"profile": profile, "static": static, "threads": threads, "memory": memory, "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):
             sections[name](args, tmp)

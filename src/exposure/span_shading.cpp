@@ -25,6 +25,12 @@ template <class T>
 struct QuadraticThrough {
     QuadraticThrough() = default;
     QuadraticThrough(const T& a, const T& m, const T& b) : c0(a), c1(-3.0f * a + 4.0f * m - b), c2(2.0f * a - 4.0f * m + 2.0f * b) {}
+    // The constant a, exactly (the three-point form rounds).
+    static QuadraticThrough constant(const T& a) {
+        QuadraticThrough q;
+        q.c0 = a;
+        return q;
+    }
     T operator()(float f) const { return c0 + f * (c1 + f * c2); }
     T c0{}, c1{}, c2{};
 };
@@ -33,10 +39,17 @@ struct QuadraticThrough {
 class SpanLighting {
 public:
     SpanLighting(const Scene& scene, const Material& material, const ShutterWindow& window, float t0, float t1,
-                 const std::array<float, 3>& times, const std::array<SurfacePoint, 3>& ends, int numTaps, const MovingSurfacePoint& point) {
+                 const std::array<float, 3>& times, const std::array<SurfacePoint, 3>& ends, int numTaps, const MovingSurfacePoint& point,
+                 bool isStill) {
         auto light = [&](const SurfacePoint& p, float t) {
             return phongTerms(scene, material, p.position, p.normal, p.isFrontFacing, scene.camera.positionAt(t));
         };
+        if (isStill) {  // one instant's terms all span long
+            m_mean = light(ends[1], times[1]);
+            m_diffuse = QuadraticThrough<glm::vec3>::constant(m_mean.diffuse);
+            m_specular = QuadraticThrough<glm::vec3>::constant(m_mean.specular);
+            return;
+        }
         if (numTaps <= 3) {
             const std::array<PhongTerms, 3> s{light(ends[0], times[0]), light(ends[1], times[1]), light(ends[2], times[2])};
             m_diffuse = {s[0].diffuse, s[1].diffuse, s[2].diffuse};
@@ -83,14 +96,21 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
                                                            : std::array<float, 3>{window.timeBetween(t0, t1, 0.0f), window.timeBetween(t0, t1, 0.5f),
                                                                                   window.timeBetween(t0, t1, 1.0f)};
     std::array<SurfacePoint, 3> ends;
-    for (int i = 0; i < 3; ++i)
-        if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
+    // A still point is the same at every time: its middle serves as both ends.
+    const bool isStill = point.isStill(t0, t1);
+    if (isStill) {
+        if (!point.at(times[1], true, ends[1])) return {glm::vec3(0.0f), 0.0f};
+        ends[0] = ends[2] = ends[1];
+    } else {
+        for (int i = 0; i < 3; ++i)
+            if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
+    }
     const std::uint32_t materialIndex = ends[1].material;
     const Material& material = scene.materials[materialIndex];
     const bool isLit = mode == ShadingMode::Phong;
 
     int lightingTaps = 0;
-    if (isLit) {
+    if (isLit && !isStill) {
         // Each half of the span turns by these angles; the reflected ray turns by twice the
         // normal's turn, plus the view direction's.
         auto toEye = [&](int i) { return scene.camera.positionAt(times[i]) - ends[i].position; };
@@ -100,7 +120,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
                                   settings.maxLightingTaps);
     }
     std::optional<SpanLighting> lighting;
-    if (isLit) lighting.emplace(scene, material, window, t0, t1, times, ends, lightingTaps, point);
+    if (isLit) lighting.emplace(scene, material, window, t0, t1, times, ends, lightingTaps, point, isStill);
 
     // Vertex colours change slowly across a triangle: the one at mid-span serves the whole span.
     const glm::vec4 vertexColor = ends[1].vertexColor;

@@ -30,6 +30,11 @@ public:
     // them (TextureFootprint::clipTo); null where the point is not held to one triangle.
     virtual const std::array<glm::vec2, 3>* uvTriangle() const { return nullptr; }
 
+    // True when nothing the point is shaded from changes over [t0, t1] (its position, normal,
+    // uv and footprint, and the eye): one instant then shades the whole span. False where the
+    // method does not know.
+    virtual bool isStill(float /*t0*/, float /*t1*/) const { return false; }
+
 protected:
     ~MovingSurfacePoint() = default;
 };

@@ -112,9 +112,21 @@ struct ExactTileScratch {
     SampleResolveScratch resolve;
     PixelShading pixelShading;
     std::vector<glm::vec3> color;
+    std::vector<glm::dvec2> sampleNdc;  ///< the tile's samples in NDC, indexed as TileRecord::sample
     Cache cache;
     Counters counters;
 };
+
+// The NDC of every sample of the pixels in rect, in TileRecord::sample order (row by row, the
+// pattern's samples per pixel): computed once per tile, not once per segment that covers it.
+inline void tileSampleNdc(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, int width, int height,
+                          std::vector<glm::dvec2>& out) {
+    const int spp = pattern.count();
+    out.clear();
+    for (int py = rect.y0; py <= rect.y1; ++py)
+        for (int px = rect.x0; px <= rect.x1; ++px)
+            for (int s = 0; s < spp; ++s) out.push_back(pattern.ndcOf(px, py, s, width, height));
+}
 
 // The exact depth of interval source `source` at shutter time t under the sample at ndc, for
 // measuring the linear depths' misordering (--option check-depth-order).

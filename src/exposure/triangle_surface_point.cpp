@@ -69,6 +69,12 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     return true;
 }
 
+bool TriangleSurfacePoint::isStill(float t0, float t1) const {
+    const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t0);
+    return &segment == &m_geometry.segmentAt(m_triangle, t1) && segment.world0 == segment.world1 && segment.normal0 == segment.normal1 &&
+           m_geometry.scene().camera.isStatic();
+}
+
 // uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).
 bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);

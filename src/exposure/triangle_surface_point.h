@@ -42,6 +42,8 @@ public:
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
+    // Still: one segment holds [t0, t1], its corners and normals do not move, nor does the camera.
+    bool isStill(float t0, float t1) const override;
 
 private:
     const TriangleSegment& select(float t) const;

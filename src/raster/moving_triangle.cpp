@@ -20,6 +20,7 @@ MovingTriangle::MovingTriangle(const std::array<glm::vec4, 3>& open, const std::
         m_a[e] = edge.a, m_b[e] = edge.b, m_c[e] = edge.c;
         m_termBound[e] = glm::abs(edge.a) + glm::abs(edge.b) + glm::abs(edge.c);
     }
+    m_isStill = m_delta[0] == glm::dvec3(0.0) && m_delta[1] == glm::dvec3(0.0) && m_delta[2] == glm::dvec3(0.0);
 }
 
 HomogeneousSample MovingTriangle::fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc,
@@ -49,7 +50,15 @@ bool MovingTriangle::isInsideAt(double u, const glm::dvec2& ndc, const std::arra
 bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const {
     if (orientation == 0) return false;
     const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
+    const glm::dvec3 p(ndc, 1.0);
     for (int e = 0; e < 3; ++e) {
+        if (m_isStill) {
+            // The constant edge function is its own maximum (a and b vanish, so (a u + b) u + c
+            // is c at every u) and |c| its term bound.
+            const double most = glm::dot(m_c[e], p) * double(orientation);
+            if (most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
+            continue;
+        }
         Quadratic q = edgeFunction(e, ndc);
         q.a *= orientation, q.b *= orientation, q.c *= orientation;
         const double most = q.maxOnUnitInterval();
@@ -60,7 +69,20 @@ bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const 
     return false;
 }
 
-int MovingTriangle::insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+int MovingTriangle::stillSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                               RootCaseCounts* rootCases) const {
+    // What solvedSpans computes when no corner moves: three constant quadratics (no roots, one
+    // piece [0, 1]), their values and edge vectors at u = 1/2 the constant terms themselves.
+    if (rootCases) rootCases->constant += 3;
+    const glm::dvec3 p(ndc, 1.0);
+    bool inside = isInsideByEdges(m_c, ndc, {glm::dot(m_c[0], p), glm::dot(m_c[1], p), glm::dot(m_c[2], p)});
+    if (inside && checkNearPlane) inside = sample(0.5, ndc).viewDepth >= zNear;
+    if (!inside) return 0;
+    bounds[0] = 0.0, bounds[1] = 1.0;
+    return 2;
+}
+
+int MovingTriangle::solvedSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
                                 RootCaseCounts* rootCases) const {
     std::array<double, 8> breaks;
     int n = 0;

@@ -53,12 +53,25 @@ public:
     // triangle is a convex combination of its corners'). Writes start/end pairs to `bounds`,
     // returns how many values it wrote (even, at most 8).
     int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                    RootCaseCounts* rootCases = nullptr) const {
+        return m_isStill ? stillSpans(ndc, zNear, checkNearPlane, bounds, rootCases) : solvedSpans(ndc, zNear, checkNearPlane, bounds, rootCases);
+    }
+    // insideSpans by solving the edge equations, whether or not the triangle moves: the general
+    // path, which a still triangle's shortcut must equal (tested bit for bit).
+    int solvedSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
                     RootCaseCounts* rootCases = nullptr) const;
+
+    // No corner moves over the segment: the edge functions are constants, and the sample is
+    // inside for all of [0, 1] or none of it. insideSpans and staysOutside then take a plain
+    // rasterizer's path (three dot products and the same on-edge rule), with the same results:
+    // the moving arithmetic with zero motion terms is exactly the constant term.
+    bool isStill() const { return m_isStill; }
 
     // Counter-clockwise (front facing) at time u, for corners in front of the eye.
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
 
 private:
+    int stillSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds, RootCaseCounts* rootCases) const;
     bool isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const;
     static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
     glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }
@@ -67,6 +80,7 @@ private:
     std::array<glm::dvec3, 3> m_a, m_b, m_c;        ///< edge e: (a u^2 + b u + c) . p
     std::array<glm::dvec3, 3> m_termBound;          ///< |a| + |b| + |c|: edge e's terms over u in [0, 1] are at most this
     std::array<glm::dvec3, 3> m_corner, m_delta;    ///< (x, y, w) at u = 0 and its change to u = 1
+    bool m_isStill = false;                         ///< every m_delta zero
 };
 
 // True when the triangle (all corners in front of the eye) is seen from its back at every u in

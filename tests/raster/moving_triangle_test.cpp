@@ -193,4 +193,57 @@ TEST(MovingTriangleStaysOutside, NeverSkipsASampleWithASpan) {
     EXPECT_GT(nearEdge, 7000);
 }
 
+TEST(MovingTriangleStill, TakesTheRasterizersPathWithTheMovingPathsResults) {
+    // A triangle with no motion (open == close) takes the still path: its spans must be the
+    // solved path's bit for bit, with the same root counts, at random points, at points on its
+    // edges and corners (exact and within the on-edge tolerance, where the top-left rule
+    // decides), and with the near plane cutting it; and staysOutside must stay conservative.
+    Rng rng(31);
+    int inside = 0, onEdge = 0, culled = 0;
+    for (int i = 0; i < 500; ++i) {
+        auto randomCorner = [&] { return glm::vec2(rng.uniform(-1, 1), rng.uniform(-1, 1)); };
+        std::array<glm::vec4, 3> corners = atW1(randomCorner(), randomCorner(), randomCorner());
+        if (i % 5 == 0)  // corners behind and before a near plane at w = 0.1
+            for (glm::vec4& c : corners) c *= rng.uniform(0.05f, 0.4f);
+        if (i % 7 == 0) corners[1] = glm::vec4(corners[0].x, corners[2].y, 0.0f, corners[0].w);  // axis-aligned edges
+        const MovingTriangle still(corners, corners);
+        ASSERT_TRUE(still.isStill());
+        const int orientation = isBackFacingThroughout(corners, corners) ? -1
+                                : isBackFacingThroughout({corners[0], corners[2], corners[1]}, {corners[0], corners[2], corners[1]}) ? 1
+                                                                                                                                     : 0;
+        for (int k = 0; k < 20; ++k) {
+            glm::dvec2 p(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+            if (k % 2 == 1) {
+                const int e = int(rng.uniform(0, 3)) % 3;
+                const double s = k % 4 == 1 ? rng.uniform(0, 1) : (k % 8 == 3 ? 0.0 : 0.5);
+                const glm::dvec2 a(corners[e].x / corners[e].w, corners[e].y / corners[e].w);
+                const glm::dvec2 b(corners[(e + 1) % 3].x / corners[(e + 1) % 3].w, corners[(e + 1) % 3].y / corners[(e + 1) % 3].w);
+                p = a + s * (b - a);
+                if (k % 3 == 0) p += glm::dvec2(rng.uniform(-1, 1), rng.uniform(-1, 1)) * 1e-7;
+                ++onEdge;
+            }
+            for (const bool checkNear : {false, true}) {
+                std::array<double, 8> fast{}, solved{};
+                RootCaseCounts fastCounts, solvedCounts;
+                const int n = still.insideSpans(p, 0.1, checkNear, fast, &fastCounts);
+                ASSERT_EQ(n, still.solvedSpans(p, 0.1, checkNear, solved, &solvedCounts)) << "triangle " << i << " point " << k;
+                for (int j = 0; j < n; ++j) ASSERT_EQ(fast[std::size_t(j)], solved[std::size_t(j)]);
+                EXPECT_EQ(fastCounts.constant, solvedCounts.constant);
+                inside += n > 0;
+                if (!checkNear && still.staysOutside(p, orientation)) {
+                    EXPECT_EQ(n, 0) << "triangle " << i << " point " << k;
+                    ++culled;
+                }
+            }
+        }
+    }
+    EXPECT_GT(inside, 2000);
+    EXPECT_GT(onEdge, 4000);
+    EXPECT_GT(culled, 1000);
+    // A corner that moves by the least float step is not still.
+    std::array<glm::vec4, 3> open = atW1({0, 0}, {1, 0}, {0, 1}), close = open;
+    close[2].x = std::nextafter(close[2].x, 1.0f);
+    EXPECT_FALSE(MovingTriangle(open, close).isStill());
+}
+
 }  // namespace streak::raster

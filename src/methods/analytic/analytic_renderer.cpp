@@ -164,6 +164,7 @@ private:
         const auto start = Clock::now();
         scratch.records.clear();
         scratch.cache.clear();
+        exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
         for (const std::uint32_t index : grid.items(tile)) {
@@ -187,7 +188,8 @@ private:
             for (int py = region.y0; py <= region.y1; ++py)
                 for (int px = region.x0; px <= region.x1; ++px)
                     for (int s = 0; s < spp; ++s) {
-                        const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
+                        const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                        const glm::dvec2 ndc = scratch.sampleNdc[sample];
                         if (frame.options.tileCull && moving.staysOutside(ndc, segment.orientation)) {
                             ++counters.samplesCulled;
                             continue;
@@ -195,7 +197,9 @@ private:
                         std::array<double, 8> b;
                         const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
                         for (int k = 0; k + 1 < n; k += 2) {
-                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc), s1 = moving.sample(b[k + 1], ndc);
+                            // (A still triangle is the same at both ends.)
+                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
+                            const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
                             // The triangle cannot turn over inside a span (its edges would have to
                             // pass the sample), so its facing at mid-span is its facing throughout.
                             if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
@@ -203,7 +207,7 @@ private:
                                 continue;
                             }
                             exposure::TileRecord r;
-                            r.sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                            r.sample = sample;
                             const double dt = double(segment.t1) - double(segment.t0);
                             r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
                             r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);

@@ -258,6 +258,7 @@ private:
         const auto start = Clock::now();
         scratch.records.clear();
         scratch.cache.clear();
+        exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         for (const std::uint32_t index : grid.items(tile)) {
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
@@ -280,9 +281,8 @@ private:
                                 continue;
                             }
                             for (int s = 0; s < spp; ++s) {
-                                const glm::dvec2 ndc = frame.pattern.ndcOf(px, py, s, width, height);
                                 const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                                intervalsOf(frame, index, curved, ndc, counters, [&](const ExposureInterval& interval) {
+                                intervalsOf(frame, index, curved, scratch.sampleNdc[sample], counters, [&](const ExposureInterval& interval) {
                                     scratch.records.push_back({sample, interval});
                                 });
                             }
