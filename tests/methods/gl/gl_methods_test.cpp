@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -68,7 +69,10 @@ class MotionPathGlAgreement : public testing::TestWithParam<std::string> {};
 // The same method on the GPU: the same exact spans (pass 1), intervals, depth-time sort, masks
 // and span shading (pass 2), so the images agree to float rounding and the counts of intervals,
 // splits and shaded spans agree too (a span may differ where a root sits on a float boundary).
-// motion-path-gl counts mask slices as the paper does; the CPU twin does too with exact-weights=0.
+// motion-path-gl counts mask slices as the paper does; the CPU twin does too with exact-weights=0,
+// and then the two agree to float rounding: 105-171 dB as EXR at 512x384 on every built-in scene
+// (llvmpipe; docs/BENCHMARKS.md, "GL methods"). Against the CPU's default exact weights they are
+// apart by the masks' quantisation alone (61-97 dB there).
 OptionMap maskSlices(OptionMap options = OptionMap()) {
     options.set("exact-weights", "0");
     return options;
@@ -79,7 +83,8 @@ TEST_P(MotionPathGlAgreement, MatchesCpuMotionPath) {
     RenderStats gpuStats, cpuStats;
     const Image gl = test::render("motion-path-gl", scene, 96, 72, OptionMap(), &gpuStats, ShadingMode::Phong);
     const Image cpu = test::render("motion-path", scene, 96, 72, maskSlices(), &cpuStats, ShadingMode::Phong);
-    EXPECT_GE(psnr(gl, cpu), 45.0);
+    std::printf("gl vs cpu %.1f dB\n", psnr(gl, cpu));
+    EXPECT_GE(psnr(gl, cpu), 80.0);
     ASSERT_GT(cpuStats.counter("intervals"), 0.0);
     for (const char* counter : {"intervals", "shaded_spans", "interval_splits", "backface_intervals_culled"})
         EXPECT_NEAR(gpuStats.counter(counter), cpuStats.counter(counter), 1e-3 * cpuStats.counter("intervals")) << counter;
@@ -93,7 +98,8 @@ TEST(MotionPathGl, MatchesCpuWithSubpixelSamples) {
     const Scene scene = builtin("crossing");
     const Image gl = test::render("motion-path-gl", scene, 64, 48, OptionMap(), nullptr, ShadingMode::Phong, 2);
     const Image cpu = test::render("motion-path", scene, 64, 48, maskSlices(), nullptr, ShadingMode::Phong, 2);
-    EXPECT_GE(psnr(gl, cpu), 45.0);
+    std::printf("gl vs cpu %.1f dB\n", psnr(gl, cpu));
+    EXPECT_GE(psnr(gl, cpu), 80.0);
 }
 
 // An interval budget of 2 keeps each sample's two nearest intervals (by minimum depth) on both,
@@ -120,7 +126,7 @@ TEST(MotionPathGl, RendersAgainWhenTheListBufferOverflows) {
     const Image image = test::render("motion-path-gl", scene, 96, 72, OptionMap(), &stats);
     const Image cpu = test::render("motion-path", scene, 96, 72, maskSlices());
     EXPECT_GE(stats.counter("path_renders"), 2.0);
-    EXPECT_GE(psnr(image, cpu), 45.0);
+    EXPECT_GE(psnr(image, cpu), 80.0);
 }
 
 // Past the memory cap the buffer stays at the cap and a per-sample budget that it always holds
