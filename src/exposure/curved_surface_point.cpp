@@ -28,7 +28,7 @@ CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const ras
     : m_geometry(geometry),
       m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
       m_clamp(site.clampToTriangle),
-      m_holdUv(site.clampToTriangle && !site.boxFootprint),
+      m_isBox(site.boxFootprint),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),
@@ -56,7 +56,8 @@ bool CurvedSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
     const double denominator = m_denominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
-    if (m_holdUv && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
+    // A box's taps are clipped to the triangle instead (TextureFootprint::clipTo).
+    if (m_clamp && !m_isBox && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
     uv = glm::vec2(float(m_uNumerator(u) / denominator), float(m_vNumerator(u) / denominator));
     return true;
 }
@@ -92,9 +93,7 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
 
 ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
                             std::uint32_t triangle, float t0, float t1, const ShadingSite& site, CurvedTriangleCache& cache) {
-    SpanShadingSettings atSite = settings;
-    atSite.boxFootprint = site.boxFootprint;
-    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), atSite);
+    return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), settings);
 }
 
 }  // namespace streak::exposure

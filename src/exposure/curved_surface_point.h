@@ -31,6 +31,7 @@ public:
     // uv as a ratio of Bernstein polynomials: sum(uv_i E_opposite(u)) / sum(E(u)).
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
+    bool hasBoxFootprint() const override { return m_isBox; }
 
 private:
     const CurvedSegment& select(float t) const;
@@ -38,7 +39,7 @@ private:
     const CurvedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
     bool m_clamp;       ///< barycentrics held to the triangle
-    bool m_holdUv;      ///< and uvAt's too, unless a box footprint clips its taps to it instead
+    bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

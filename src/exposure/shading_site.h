@@ -23,7 +23,7 @@ struct ShadingSite {
     // atlas that extrapolated barycentrics would reach.
     bool clampToTriangle = false;
     // The footprint is a region of the screen whose samples share the shading, so its texels are
-    // averaged alike (a box, SpanShadingSettings::boxFootprint), not a sample's bell.
+    // averaged alike (a box, MovingSurfacePoint::hasBoxFootprint), not a sample's bell.
     bool boxFootprint = false;
 };
 

@@ -149,7 +149,8 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     // time as much as the triangle covers of the box then: the pixel sees the triangle's colour
     // over time in proportion to its coverage. A time at which no tap is inside still counts a
     // little, so a span never loses all its weight.
-    const std::array<glm::vec2, 3>* clipTo = settings.boxFootprint ? point.uvTriangle() : nullptr;
+    const bool isBox = point.hasBoxFootprint();
+    const std::array<glm::vec2, 3>* clipTo = isBox ? point.uvTriangle() : nullptr;
     constexpr float kLeastCoverage = 1e-3f;
     // Texel sums; the base colour and the vertex colour multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
@@ -159,7 +160,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         glm::vec2 uv = ends[1].uv;
         // (The middle tap's uv is the middle end's, unless a clipped box wants it not held.)
         if ((clipTo || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
-        const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, settings.boxFootprint, clipTo};
+        const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, isBox, clipTo};
         float weight = 1.0f;
         const glm::vec4 texel = clipTo ? texture.sampleBox(uv, footprint, &weight) : texture.sample(uv, footprint);
         weight = std::max(weight, kLeastCoverage);

@@ -29,6 +29,10 @@ public:
     // The uv corners of the triangle the point is held to, where a box footprint is clipped to
     // them (TextureFootprint::clipTo); null where the point is not held to one triangle.
     virtual const std::array<glm::vec2, 3>* uvTriangle() const { return nullptr; }
+    // The point's footprint (SurfacePoint::duvdx, duvdy) is a region of the screen whose texels
+    // count alike (TextureFootprint::isBox), not one sample's spacing: true where a pixel's
+    // samples share the shading (ShadingSite::boxFootprint).
+    virtual bool hasBoxFootprint() const { return false; }
 
     // True when nothing the point is shaded from changes over [t0, t1] (its position, normal,
     // uv and footprint, and the eye): one instant then shades the whole span. False where the
@@ -46,10 +50,6 @@ struct SpanShadingSettings {
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
     ShutterWindow window;          ///< the sample's row of the shutter: taps are even in its exposure
-    // The point's footprint (SurfacePoint::duvdx, duvdy) is a region of the screen whose texels
-    // count alike (TextureFootprint::isBox), not one sample's spacing: set where a pixel's
-    // samples share the shading.
-    bool boxFootprint = false;
 };
 
 // The mean shaded colour (and opacity) of a point over [t0, t1] of the shutter: the colour of

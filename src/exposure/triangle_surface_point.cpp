@@ -11,7 +11,7 @@ TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, co
     : m_geometry(geometry),
       m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
       m_clamp(site.clampToTriangle),
-      m_holdUv(site.clampToTriangle && !site.boxFootprint),
+      m_isBox(site.boxFootprint),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])), m_cache(cache) {}
@@ -80,7 +80,8 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
     const double denominator = m_uvDenominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
-    if (m_holdUv && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
+    // A box's taps are clipped to the triangle instead (TextureFootprint::clipTo).
+    if (m_clamp && !m_isBox && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
     uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
     return true;
 }
@@ -88,9 +89,7 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
 ShadedColor shadeTriangleSpan(const SegmentedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode,
                               const SpanShadingSettings& settings, std::uint32_t triangle, float t0, float t1, const ShadingSite& site,
                               MovingTriangleCache& cache) {
-    SpanShadingSettings atSite = settings;
-    atSite.boxFootprint = site.boxFootprint;
-    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, site, triangle, cache), atSite);
+    return shadeTimeSpan(geometry.scene(), mode, t0, t1, TriangleSurfacePoint(geometry, viewport, site, triangle, cache), settings);
 }
 
 }  // namespace streak::exposure

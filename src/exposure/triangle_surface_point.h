@@ -42,6 +42,7 @@ public:
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
+    bool hasBoxFootprint() const override { return m_isBox; }
     // Still: one segment holds [t0, t1], its corners and normals do not move, nor does the camera.
     bool isStill(float t0, float t1) const override;
 
@@ -51,7 +52,7 @@ private:
     const SegmentedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
     bool m_clamp;       ///< barycentrics held to the triangle
-    bool m_holdUv;      ///< and uvAt's too, unless a box footprint clips its taps to it instead
+    bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;
