@@ -84,7 +84,7 @@ int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, cons
 }
 
 float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window,
-                    const ExactDepth* exactDepth, double* misorderedTime, double* overlapTime) {
+                    const ExactDepth* exactDepth, double* misorderedTime, double* overlapTime, std::vector<VisibleSpan>* visible) {
     std::fill(weights.begin(), weights.end(), 0.0f);
     float background = 0.0f;
     std::vector<std::size_t> covering;
@@ -99,6 +99,7 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
         for (std::size_t i : covering)
             if (intervals[i].depthAt(tm) < intervals[nearest].depthAt(tm)) nearest = i;
         weights[nearest] += share;
+        if (visible && share > 0.0f) appendVisibleSpan(*visible, std::uint32_t(nearest), a, b, share);
         if (exactDepth && misorderedTime && covering.size() > 1) {
             if (overlapTime) *overlapTime += b - a;
             std::size_t trueNearest = covering[0];

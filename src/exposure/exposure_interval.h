@@ -1,5 +1,6 @@
 #pragma once
 
+#include "exposure/visible_pieces.h"
 #include "scene/shutter.h"
 
 #include <glm/vec3.hpp>
@@ -61,9 +62,13 @@ int compressIntervals(std::vector<ExposureInterval>& intervals, int budget, cons
 //
 // Shares are measured by the sample row's exposure (window.measure): a piece's time under a box
 // shutter, its integral of the curve otherwise, 0 outside a rolling row's window.
+//
+// visible, when given, receives where each interval shows: the pieces it takes, joined where
+// consecutive (in time order).
 using ExactDepth = std::function<double(std::size_t, float)>;
 float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window = {},
-                    const ExactDepth* exactDepth = nullptr, double* misorderedTime = nullptr, double* overlapTime = nullptr);
+                    const ExactDepth* exactDepth = nullptr, double* misorderedTime = nullptr, double* overlapTime = nullptr,
+                    std::vector<VisibleSpan>* visible = nullptr);
 float resolveTranslucent(std::span<const ExposureInterval> intervals, std::span<float> weights, const ShutterWindow& window = {});
 
 }  // namespace streak::exposure

@@ -40,6 +40,7 @@ void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counter
 struct SampleResolveScratch {
     std::vector<float> weights;
     std::vector<VisiblePiece> pieces;
+    std::vector<VisibleSpan> visible;  ///< where the opaque intervals show
     OcclusionScratch occlusion;
 };
 
@@ -47,8 +48,8 @@ struct SampleResolveScratch {
 // method that finds them: shade what must be known before the resolve (translucent opacity;
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
 // exactly over time (dropping first what is wholly hidden). Returns the colour of all but the
-// visible opaque pieces, which it leaves in scratch.pieces (abutting whole pieces of a triangle
-// merged) for the pixel's shading (PixelShading). The method supplies, per interval source:
+// visible opaque pieces, which it leaves in scratch.pieces (each opaque interval's spans where
+// it shows, abutting ones of a triangle merged) for the pixel's shading (PixelShading). The method supplies, per interval source:
 // triangleOf(source), isTranslucent(triangle) and shade(triangle, t0, t1) -> ShadedColor;
 // exactDepth, when given, measures the linear depths' misordering (resolveOpaque). Shares are
 // of the sample row's exposure, `window`.
@@ -77,12 +78,13 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     if (cullHidden && !exactDepth) counters.hiddenCulled += std::int64_t(cullHiddenIntervals(list, scratch.occlusion));
     counters.maxResolved = std::max(counters.maxResolved, std::int64_t(list.size()));
     scratch.weights.resize(list.size());
+    scratch.visible.clear();
     const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
     float backgroundWeight = 0.0f;
     if (hasTranslucency) backgroundWeight = resolveTranslucent(list, scratch.weights, window);
-    else if (exactDepth)
-        backgroundWeight = resolveOpaque(list, scratch.weights, window, exactDepth, &counters.misorderedTime, &counters.coveredPairTime);
-    else backgroundWeight = resolveOpaque(list, scratch.weights, window);
+    else
+        backgroundWeight = resolveOpaque(list, scratch.weights, window, exactDepth, exactDepth ? &counters.misorderedTime : nullptr,
+                                         exactDepth ? &counters.coveredPairTime : nullptr, &scratch.visible);
     const auto resolved = Clock::now();
     counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
 
@@ -94,9 +96,16 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
             sum += list[k].color * scratch.weights[k];
             continue;
         }
-        const bool isWhole = scratch.weights[k] >= window.measure(list[k].t0, list[k].t1) * (1.0f - 1e-5f);
-        scratch.pieces.push_back({triangleOf(list[k].source), list[k].t0, list[k].t1, scratch.weights[k], isWhole});
+        if (hasTranslucency) {
+            const bool isWhole = scratch.weights[k] >= window.measure(list[k].t0, list[k].t1) * (1.0f - 1e-5f);
+            scratch.pieces.push_back({triangleOf(list[k].source), list[k].t0, list[k].t1, scratch.weights[k], isWhole});
+        }
     }
+    // Opaque: each interval is shaded over the time it shows.
+    if (!hasTranslucency)
+        for (const VisibleSpan& shown : scratch.visible)
+            if (!list[shown.interval].isShaded)
+                scratch.pieces.push_back({triangleOf(list[shown.interval].source), shown.t0, shown.t1, shown.weight, true});
     mergeAbuttingPieces(scratch.pieces);
     return sum;
 }

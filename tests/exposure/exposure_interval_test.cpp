@@ -86,6 +86,29 @@ TEST(Resolve, OpaqueHandMadeLists) {
     EXPECT_NEAR(misordered, 0.5, 1e-6);
 }
 
+// Where each interval shows: a near surface over [0.5, 0.7] splits the far one's visible time
+// in two spans, [0, 0.5] and [0.7, 1]; consecutive pieces of one interval are one span.
+TEST(Resolve, VisibleSpansAreWhereEachIntervalIsNearest) {
+    std::vector<ExposureInterval> list{interval(0.0f, 1.0f, 10.0f, 10.0f), interval(0.5f, 0.7f, 3.0f, 3.0f),
+                                       interval(0.1f, 0.3f, 12.0f, 12.0f)};  // hidden: adds cuts at 0.1 and 0.3
+    std::vector<float> w(3);
+    std::vector<VisibleSpan> visible;
+    resolveOpaque(list, w, {}, nullptr, nullptr, nullptr, &visible);
+    ASSERT_EQ(visible.size(), 3u);
+    EXPECT_EQ(visible[0].interval, 0u);
+    EXPECT_FLOAT_EQ(visible[0].t0, 0.0f);
+    EXPECT_FLOAT_EQ(visible[0].t1, 0.5f);
+    EXPECT_NEAR(visible[0].weight, 0.5f, 1e-6f);
+    EXPECT_EQ(visible[1].interval, 1u);
+    EXPECT_FLOAT_EQ(visible[1].t0, 0.5f);
+    EXPECT_FLOAT_EQ(visible[1].t1, 0.7f);
+    EXPECT_EQ(visible[2].interval, 0u);
+    EXPECT_FLOAT_EQ(visible[2].t0, 0.7f);
+    EXPECT_FLOAT_EQ(visible[2].t1, 1.0f);
+    EXPECT_NEAR(visible[0].weight + visible[2].weight, w[0], 1e-6f);
+    EXPECT_EQ(w[2], 0.0f);
+}
+
 TEST(Resolve, SharesAreTheRowsExposure) {
     // Under the triangle curve exposure up to t is 2t^2 (t <= 1/2): a near surface over [0, 0.25]
     // takes 1/8 of the sample, the far one all shutter the other 7/8.

@@ -35,12 +35,8 @@ public:
 // A 256-texel linear ramp along u (red = (x + 1/2) / 256 at texel centres), constant along v.
 Scene rampScene() {
     Scene scene = test::emptyScene();
-    std::vector<glm::vec4> texels(256 * 4);
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 256; ++x) texels[std::size_t(y) * 256 + x] = glm::vec4((float(x) + 0.5f) / 256.0f, 0.0f, 0.0f, 1.0f);
-    scene.textures.push_back(Texture::fromLinear(256, 4, std::move(texels), WrapMode::ClampToEdge, WrapMode::ClampToEdge));
     const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f));
-    scene.materials[m].baseColorTexture = 0;
+    scene.materials[m].baseColorTexture = test::addRampTexture(scene);
     return scene;
 }
 

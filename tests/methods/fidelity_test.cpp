@@ -248,3 +248,43 @@ TEST(SlantedTexturePixelShading, CheckerboardKeepsItsContrastAlongTheMinorAxis) 
 INSTANTIATE_TEST_SUITE_P(CpuMethods, SlantedTexture, ::testing::ValuesIn(kMethods));
 
 }  // namespace streak
+
+namespace streak {
+
+namespace {
+
+// A far quad textured with a ramp along u (red = u) slides right 16 pixels over the shutter
+// at depth 4, so the texture under pixel (4, 4)'s centre runs red(t) = (44.5 - 16 t) / 88; a
+// near black quad at depth 2 covers that centre until its right edge, sliding left from x = 12
+// by 16 pixels, passes it at t = 7.5 / 16.
+Scene partlyHiddenScene() {
+    Scene scene = test::emptyScene();
+    const std::uint32_t ramp = test::addMaterial(scene, glm::vec3(1.0f));
+    scene.materials[ramp].baseColorTexture = test::addRampTexture(scene);
+    test::addPixelQuad(scene, test::PixelCamera{8, 8, 4.0f}, ramp, -40.0f, -1.0f, 48.0f, 9.0f, 16.0f, 0.0f);
+    scene.meshes.back().uvs = {{0.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}};
+    test::addPixelQuad(scene, test::PixelCamera{8, 8, 2.0f}, test::addMaterial(scene, glm::vec3(0.0f)), -20.0f, -1.0f, 12.0f, 9.0f, -16.0f, 0.0f);
+    validateScene(scene);
+    return scene;
+}
+
+}  // namespace
+
+class PartlyHiddenSurface : public ::testing::TestWithParam<const char*> {};
+
+// A surface hidden for part of the shutter shows the mean of its colour over the time it shows,
+// not over its whole span: the pixel is the integral of red(t) over [7.5/16, 1], 0.1977, where
+// the whole span's mean times the share it shows gives 0.2203.
+TEST_P(PartlyHiddenSurface, ShowsTheColourOfTheTimeItShows) {
+    const std::string method = GetParam();
+    const double hidden = 7.5 / 16.0;
+    auto integral = [](double t) { return (44.5 * t - 8.0 * t * t) / 88.0; };
+    const double expected = integral(1.0) - integral(hidden);
+    OptionMap options = method == "accumulation" ? test::withOption("samples", "4096") : OptionMap();
+    const Image image = test::render(method, partlyHiddenScene(), 8, 8, options, nullptr, ShadingMode::Unlit, 1);
+    EXPECT_NEAR(image.at(4, 4).x, expected, 2e-3) << method;
+}
+
+INSTANTIATE_TEST_SUITE_P(CpuMethods, PartlyHiddenSurface, ::testing::Values("accumulation", "motion-path", "analytic", "higher-order"));
+
+}  // namespace streak

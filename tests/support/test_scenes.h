@@ -4,11 +4,13 @@
 #include "scene/scene.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace streak::test {
 
@@ -65,6 +67,16 @@ inline void addMovingQuad(Scene& scene, std::uint32_t material, const std::array
     for (const glm::vec3& p : close) mesh.positions.push_back(p);
     mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
     scene.meshes.push_back(mesh);
+}
+
+// A 256 x 4 texture, a linear ramp along u (red = (x + 1/2) / 256 at texel centres, so red = u
+// under bilinear lookups inside), constant along v; returns its index.
+inline int addRampTexture(Scene& scene) {
+    std::vector<glm::vec4> texels(256 * 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 256; ++x) texels[std::size_t(y) * 256 + x] = glm::vec4((float(x) + 0.5f) / 256.0f, 0.0f, 0.0f, 1.0f);
+    scene.textures.push_back(Texture::fromLinear(256, 4, std::move(texels), WrapMode::ClampToEdge, WrapMode::ClampToEdge));
+    return int(scene.textures.size()) - 1;
 }
 
 // An axis-aligned quad of raster rectangle [x0,x1] x [y0,y1] at the camera's depth, moved by

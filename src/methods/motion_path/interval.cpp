@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -11,42 +12,119 @@ namespace streak::motion_path {
 
 namespace {
 
-// Relative tolerance for depth comparisons: intervals of one surface touching end to end, or
-// meeting at a shared edge, must not count as crossing.
-float tolerance(const Interval& a, const Interval& b) { return 1e-6f * (a.maxDepth() + b.maxDepth()); }
+std::span<const DepthKnot> knotsOf(const Interval& i, std::span<const DepthKnot> knots) {
+    return i.numKnots == 0 ? std::span<const DepthKnot>() : knots.subspan(i.firstKnot, i.numKnots);
+}
+
+// Calls visit(t) at ts, at every corner of a's or b's polyline inside (ts, te), and at te, in
+// time order, until visit returns false. Between two consecutive calls both depths are linear.
+template <class Visit>
+void forEachCorner(const Interval& a, const Interval& b, std::span<const DepthKnot> knots, float ts, float te, Visit&& visit) {
+    if (!visit(ts)) return;
+    const std::span<const DepthKnot> ka = knotsOf(a, knots), kb = knotsOf(b, knots);
+    auto after = [ts](std::span<const DepthKnot> k) {
+        return std::size_t(std::upper_bound(k.begin(), k.end(), ts, [](float t, const DepthKnot& x) { return t < x.t; }) - k.begin());
+    };
+    std::size_t i = after(ka), j = after(kb);
+    for (;;) {
+        const float ta = i < ka.size() ? ka[i].t : te, tb = j < kb.size() ? kb[j].t : te;
+        const float t = std::min(ta, tb);
+        if (!(t < te)) break;
+        if (!visit(t)) return;
+        i += ta == t, j += tb == t;
+    }
+    visit(te);
+}
+
+// Restricts an interval's corners to those inside its (new) [t0, t1].
+void clipKnots(Interval& i, std::span<const DepthKnot> knots) {
+    if (i.numKnots == 0) return;
+    const std::span<const DepthKnot> k = knots.subspan(i.firstKnot, i.numKnots);
+    const auto begin = std::upper_bound(k.begin(), k.end(), i.t0, [](float t, const DepthKnot& x) { return t < x.t; });
+    const auto end = std::lower_bound(begin, k.end(), i.t1, [](const DepthKnot& x, float t) { return x.t < t; });
+    i.firstKnot += std::uint32_t(begin - k.begin());
+    i.numKnots = std::uint32_t(end - begin);
+    i.knotNear = std::numeric_limits<float>::infinity(), i.knotFar = -std::numeric_limits<float>::infinity();
+    for (auto it = begin; it != end; ++it) i.knotNear = std::min(i.knotNear, it->depth), i.knotFar = std::max(i.knotFar, it->depth);
+}
 
 }  // namespace
 
-bool splitAtCrossing(Interval& a, Interval& b, Interval& aTail, Interval& bTail) {
+float depthAt(const Interval& interval, std::span<const DepthKnot> knots, float t) {
+    if (interval.numKnots == 0) return interval.depthAt(t);
+    const std::span<const DepthKnot> k = knots.subspan(interval.firstKnot, interval.numKnots);
+    // The corners around t: the interval's ends stand before the first knot and after the last.
+    const std::size_t next = std::size_t(std::upper_bound(k.begin(), k.end(), t, [](float x, const DepthKnot& c) { return x < c.t; }) - k.begin());
+    const float ta = next == 0 ? interval.t0 : k[next - 1].t, da = next == 0 ? interval.depth0 : k[next - 1].depth;
+    const float tb = next == k.size() ? interval.t1 : k[next].t, db = next == k.size() ? interval.depth1 : k[next].depth;
+    return tb > ta ? da + (db - da) * (t - ta) / (tb - ta) : da;
+}
+
+bool splitAtCrossing(Interval& a, Interval& b, Interval& aTail, Interval& bTail, std::span<const DepthKnot> knots) {
     const float ts = std::max(a.t0, b.t0), te = std::min(a.t1, b.t1);
     if (!(ts < te)) return false;
-    const float ds = a.depthAt(ts) - b.depthAt(ts);
-    const float de = a.depthAt(te) - b.depthAt(te);
-    const float eps = tolerance(a, b);
-    if (!((ds > eps && de < -eps) || (ds < -eps && de > eps))) return false;
-    const float t = ts + (te - ts) * ds / (ds - de);
+    const float eps = depthTolerance(a, b);
+    float t = 0.0f;
+    if (a.numKnots == 0 && b.numKnots == 0) {
+        const float ds = a.depthAt(ts) - b.depthAt(ts);
+        const float de = a.depthAt(te) - b.depthAt(te);
+        if (!((ds > eps && de < -eps) || (ds < -eps && de > eps))) return false;
+        t = ts + (te - ts) * ds / (ds - de);
+    } else {
+        // The first change of side beyond the tolerance: between the last corner where the
+        // difference had the old side's sign and the first beyond it on the other side, the
+        // last pair of corners where it goes from that sign to zero or past holds a root.
+        int side = 0;
+        bool isCrossed = false;
+        float previousT = ts, previousD = 0.0f;
+        bool isFirst = true;
+        forEachCorner(a, b, knots, ts, te, [&](float c) {
+            const float d = depthAt(a, knots, c) - depthAt(b, knots, c);
+            if (!isFirst && side != 0 && float(side) * previousD > 0.0f && float(side) * d <= 0.0f)
+                t = previousT + (c - previousT) * previousD / (previousD - d);
+            isFirst = false;
+            previousT = c, previousD = d;
+            const int s = d > eps ? 1 : d < -eps ? -1 : 0;
+            if (s == 0) return true;
+            if (side == 0) {
+                side = s;
+                return true;
+            }
+            if (s == side) return true;
+            isCrossed = true;
+            return false;
+        });
+        if (!isCrossed) return false;
+    }
     if (!(t > a.t0 && t < a.t1 && t > b.t0 && t < b.t1)) return false;
-    const float depthA = a.depthAt(t), depthB = b.depthAt(t);
+    const float depthA = depthAt(a, knots, t), depthB = depthAt(b, knots, t);
     aTail = a, bTail = b;
     a.t1 = t, a.depth1 = depthA;
     aTail.t0 = t, aTail.depth0 = depthA;
     b.t1 = t, b.depth1 = depthB;
     bTail.t0 = t, bTail.depth0 = depthB;
+    clipKnots(a, knots), clipKnots(aTail, knots), clipKnots(b, knots), clipKnots(bTail, knots);
     return true;
 }
 
-bool canStayBefore(const Interval& h, const Interval& k) {
-    const float eps = tolerance(h, k);
+bool canStayBefore(const Interval& h, const Interval& k, std::span<const DepthKnot> knots) {
+    const float eps = depthTolerance(h, k);
     if (h.maxDepth() <= k.minDepth() + eps) return true;  // (1) no depth overlap
     const float ts = std::max(h.t0, k.t0), te = std::min(h.t1, k.t1);
     if (!(ts < te)) return true;  // (2) no time overlap
+    if (h.numKnots > 0 || k.numKnots > 0) {
+        // (3) and (4) at every corner: each says h's depth <= k's + eps there.
+        bool isBefore = true;
+        forEachCorner(h, k, knots, ts, te, [&](float t) { return isBefore = depthAt(h, knots, t) <= depthAt(k, knots, t) + eps; });
+        return isBefore;
+    }
     // (3) k behind h's line at both ends of the common span.
     if (k.depthAt(ts) >= h.depthAt(ts) - eps && k.depthAt(te) >= h.depthAt(te) - eps) return true;
     // (4) h in front of k's line at both ends.
     return h.depthAt(ts) <= k.depthAt(ts) + eps && h.depthAt(te) <= k.depthAt(te) + eps;
 }
 
-void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCounters& counters) {
+void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCounters& counters, std::span<const DepthKnot> knots) {
     std::sort(intervals.begin(), intervals.end(), [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
     // Split every crossing pair. Pieces of a segment cannot cross what the whole did not, and
     // the inner loop runs over the growing list, so every pair is seen once it exists.
@@ -56,7 +134,7 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
             if (intervals[j].minDepth() > intervals[i].maxDepth() || intervals[i].minDepth() > intervals[j].maxDepth()) continue;
             Interval aTail, bTail;
             Interval a = intervals[i], b = intervals[j];
-            if (!splitAtCrossing(a, b, aTail, bTail)) continue;
+            if (!splitAtCrossing(a, b, aTail, bTail, knots)) continue;
             if (int(intervals.size()) + 2 > maxIntervals) {
                 ++counters.overflow;
                 continue;
@@ -95,7 +173,7 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
     auto canGoFirst = [&](std::uint32_t c, std::size_t i) {
         if (!isFinite) {
             for (std::size_t k = i; k < n; ++k)
-                if (order[k] != c && !canStayBefore(intervals[c], intervals[order[k]])) return false;
+                if (order[k] != c && !canStayBefore(intervals[c], intervals[order[k]], knots)) return false;
             return true;
         }
         const float farthest = intervals[c].maxDepth();
@@ -103,7 +181,7 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
             const std::uint32_t k = byDepth[d];
             if (isPlaced[k]) continue;
             if (intervals[k].minDepth() >= farthest) break;
-            if (k != c && !canStayBefore(intervals[c], intervals[k])) return false;
+            if (k != c && !canStayBefore(intervals[c], intervals[k], knots)) return false;
         }
         return true;
     };

@@ -40,6 +40,10 @@ struct Options {
     int maxIntervals = kLosslessIntervals;
     int maskBits = 128;
     bool exactWeights = true;  ///< opaque pieces measured in time, not in mask slices
+    // Abutting intervals of one opaque triangle over consecutive segments become one, with a
+    // polyline depth, before the sort (with exact weights only: the GL twin's slices keep one
+    // interval per segment, as the paper does).
+    bool mergeSegments = true;
     int textureSamples = 16;
     bool sortIntervals = true;
     int curveSegments = 4;
@@ -58,7 +62,7 @@ struct Fragment {
 // Counters of one thread, summed at the end.
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
-                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0;
+                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0, mergedIntervals = 0;
     exposure::PixelShadingCounters shading;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
@@ -75,6 +79,10 @@ struct TileScratch {
     std::vector<std::uint32_t> sortedRuns;
     std::vector<float> weights;            ///< per sorted interval: its share of the sample
     std::vector<float> backgroundWeights;  ///< per sample
+    std::vector<motion_path::DepthKnot> knots;  ///< the tile's merged intervals' depth corners
+    std::vector<exposure::VisibleSpan> visible;  ///< per sample with exact opaque weights: where its intervals show
+    std::vector<std::uint32_t> visibleRuns;     ///< per sample; runs[i] == runs[i + 1] with none (or not resolved so)
+    std::vector<char> hasVisibleSpans;          ///< per sample: its opaque pieces are its visible spans
     std::vector<Interval> work;            ///< one sample's list while it is sorted
     std::vector<exposure::VisiblePiece> spans;  ///< one sample's visible opaque pieces
     exposure::PixelShading pixelShading;        ///< one pixel's, shaded together
@@ -121,7 +129,7 @@ public:
             total.fragments += c.fragments, total.fragmentOverflowSamples += c.fragmentOverflowSamples;
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
-            total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces;
+            total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces, total.mergedIntervals += c.mergedIntervals;
             total.shading.add(c.shading);
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
@@ -147,6 +155,8 @@ public:
         stats.setCounter("fragments_per_sample_mean", double(total.fragments) / numSamples);
         stats.setCounter("fragment_overflow_samples", double(total.fragmentOverflowSamples));
         stats.setCounter("intervals", double(total.intervals));
+        stats.setCounter("segment_intervals_merged", double(total.mergedIntervals));
+        stats.setCounter("merge_segments", m_options.mergeSegments && m_options.exactWeights ? 1 : 0);
         stats.setCounter("intervals_per_sample_mean", double(total.intervals) / numSamples);
         stats.setCounter("intervals_per_sample_max", double(total.maxIntervals));
         stats.setCounter("interval_overflow_samples", double(total.intervalOverflowSamples));
@@ -313,7 +323,17 @@ private:
         // Build: each sample's paths, once each, into exact-time intervals.
         start = now;
         scratch.built.clear();
+        scratch.knots.clear();
         scratch.builtRuns.assign(numSamples + 1, 0);
+        const bool isMerging = options.mergeSegments && options.exactWeights;
+        const int segmentsPerTriangle = frame.segmented.numSegments();
+        auto isOpaqueSurface = [&](std::uint32_t path) {
+            return !frame.scene.materials[frame.geometry.triangles()[frame.paths[path].triangle].material].isTranslucent();
+        };
+        // Paths are segments, triangle-major: one triangle's segments are consecutive.
+        auto sameSurface = [&](std::uint32_t a, std::uint32_t b) {
+            return a / std::uint32_t(segmentsPerTriangle) == b / std::uint32_t(segmentsPerTriangle) && isOpaqueSurface(a);
+        };
         for (std::size_t i = 0; i < numSamples; ++i) {
             std::span<Fragment> fragments(scratch.bySample.data() + runs[i], runs[i + 1] - runs[i]);
             if (!fragments.empty()) {
@@ -331,6 +351,7 @@ private:
                 }
                 const std::size_t first = scratch.built.size();
                 buildIntervals(frame, fragments, sampleNdc(frame, rect, i), sampleWindow(frame, rect, i), scratch, scratch.built);
+                if (isMerging) counters.mergedIntervals += motion_path::mergeAbuttingIntervals(scratch.built, first, scratch.knots, sameSurface);
                 if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
                     // Over budget: keep the nearest intervals.
                     ++counters.intervalOverflowSamples;
@@ -359,7 +380,7 @@ private:
                 work.assign(scratch.built.begin() + begin, scratch.built.begin() + end);
                 if (options.sortIntervals) {
                     motion_path::SortCounters sortCounters;
-                    motion_path::sortDepthTime(work, options.maxIntervals, sortCounters);
+                    motion_path::sortDepthTime(work, options.maxIntervals, sortCounters, scratch.knots);
                     counters.splits += sortCounters.splits;
                     counters.cycles += sortCounters.cycles;
                     counters.intervalOverflowSamples += sortCounters.overflow > 0;
@@ -379,9 +400,25 @@ private:
         start = now;
         scratch.weights.resize(scratch.sorted.size());
         scratch.backgroundWeights.assign(numSamples, 1.0f);
+        scratch.visible.clear();
+        scratch.visibleRuns.assign(numSamples + 1, 0);
+        scratch.hasVisibleSpans.assign(numSamples, 0);
         for (std::size_t i = 0; i < numSamples; ++i) {
             const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
+            scratch.visibleRuns[i + 1] = scratch.visibleRuns[i];
             if (end == begin) continue;
+            const std::span<const Interval> list = std::span<const Interval>(scratch.sorted).subspan(begin, end - begin);
+            if (options.exactWeights && std::all_of(list.begin(), list.end(), [](const Interval& x) { return x.alpha >= 1.0f; })) {
+                // Exact opaque weights also say where each interval shows: a partly hidden one
+                // is shaded over the time it shows.
+                const std::size_t firstSpan = scratch.visible.size();
+                scratch.backgroundWeights[i] = motion_path::resolveOpaqueSpans(list, std::span(scratch.weights).subspan(begin, end - begin),
+                                                                               sampleWindow(frame, rect, i), scratch.visible);
+                for (std::size_t v = firstSpan; v < scratch.visible.size(); ++v) scratch.visible[v].interval += begin;
+                scratch.visibleRuns[i + 1] = std::uint32_t(scratch.visible.size());
+                scratch.hasVisibleSpans[i] = 1;
+                continue;
+            }
             scratch.backgroundWeights[i] =
                 motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
                                             std::span(scratch.weights).subspan(begin, end - begin),
@@ -392,8 +429,9 @@ private:
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
 
         // Shade: only what shows, pixel by pixel (exposure::PixelShading). Translucent intervals
-        // were shaded when built; abutting wholly visible pieces of a triangle are one span
-        // (exposure::mergeAbuttingPieces).
+        // were shaded when built; with exact opaque weights the pieces are the visible spans
+        // from the resolve, else whole intervals; abutting wholly visible pieces of a triangle
+        // are one span (exposure::mergeAbuttingPieces).
         start = now;
         scratch.color.resize(numSamples);
         for (std::size_t first = 0; first < numSamples; first += std::size_t(spp)) {
@@ -406,13 +444,14 @@ private:
                 const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
                 std::vector<exposure::VisiblePiece>& spans = scratch.spans;
                 spans.clear();
+                const bool hasVisibleSpans = scratch.hasVisibleSpans[i] != 0;
                 for (std::uint32_t k = begin; k < end; ++k) {
                     if (scratch.weights[k] <= 0.0f) continue;
                     const Interval& interval = scratch.sorted[k];
                     const std::uint32_t triangle = frame.paths[interval.source].triangle;
                     if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
                         sum += interval.color * scratch.weights[k];
-                    else {
+                    else if (!hasVisibleSpans) {
                         bool isWhole;
                         if (options.exactWeights) {
                             isWhole = scratch.weights[k] >= window.measure(interval.t0, interval.t1) * (1.0f - 1e-5f);
@@ -423,6 +462,13 @@ private:
                         spans.push_back({triangle, interval.t0, interval.t1, scratch.weights[k], isWhole});
                     }
                 }
+                if (hasVisibleSpans)
+                    for (std::uint32_t v = scratch.visibleRuns[i]; v < scratch.visibleRuns[i + 1]; ++v) {
+                        const exposure::VisibleSpan& shown = scratch.visible[v];
+                        const std::uint32_t triangle = frame.paths[scratch.sorted[shown.interval].source].triangle;
+                        if (!frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
+                            spans.push_back({triangle, shown.t0, shown.t1, shown.weight, true});
+                    }
                 scratch.color[i] = sum;
                 if (spans.empty()) continue;
                 exposure::mergeAbuttingPieces(spans);
@@ -456,6 +502,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.maxIntervals = options.getInt("max-intervals", kLosslessIntervals, 1, 1 << 16);
     o.maskBits = options.getInt("mask-bits", 128, 32, 256);
     o.exactWeights = options.getInt("exact-weights", 1, 0, 1) != 0;
+    o.mergeSegments = options.getInt("merge-segments", 1, 0, 1) != 0;
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);

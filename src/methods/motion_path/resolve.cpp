@@ -26,7 +26,8 @@ float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<flo
     return float(numBits - accumulated.count()) * scale;
 }
 
-float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window) {
+float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window,
+                         std::vector<exposure::VisibleSpan>* visible) {
     // The union of the spans so far, disjoint and in time order.
     thread_local std::vector<std::pair<float, float>> covered;
     covered.clear();
@@ -40,10 +41,18 @@ float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weig
         float hidden = 0.0f, lo = t0, hi = t1;  // hidden: exposure
         auto first = std::lower_bound(covered.begin(), covered.end(), t0, [](const auto& span, float t) { return span.second <= t; });
         auto last = first;
+        float shownFrom = t0;  ///< where the next visible span may start
+        auto show = [&](float a, float b) {
+            if (visible && a < b)
+                if (const float w = window.measure(a, b); w > 0.0f) visible->push_back({std::uint32_t(i), a, b, w});
+        };
         for (; last != covered.end() && last->first < t1; ++last) {
             hidden += window.measure(std::max(last->first, t0), std::min(last->second, t1));
             lo = std::min(lo, last->first), hi = std::max(hi, last->second);
+            show(shownFrom, last->first);
+            shownFrom = std::max(shownFrom, last->second);
         }
+        show(shownFrom, t1);
         const float visible = std::max(0.0f, window.measure(t0, t1) - hidden);
         weights[i] = visible;
         coveredLength += visible;
@@ -82,7 +91,12 @@ float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<fl
                      const ShutterWindow& window) {
     const bool isTranslucent = std::any_of(sorted.begin(), sorted.end(), [](const Interval& i) { return i.alpha < 1.0f; });
     if (isTranslucent) return resolveTranslucent(sorted, numBits, weights, window);
-    return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights, window) : resolveOpaque(sorted, numBits, weights, window);
+    return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights, window, nullptr) : resolveOpaque(sorted, numBits, weights, window);
+}
+
+float resolveOpaqueSpans(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window,
+                         std::vector<exposure::VisibleSpan>& visible) {
+    return resolveOpaqueExact(sorted, weights, window, &visible);
 }
 
 glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background, OpaqueWeights opaque,

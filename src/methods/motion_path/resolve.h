@@ -1,11 +1,13 @@
 #pragma once
 
+#include "exposure/visible_pieces.h"
 #include "methods/motion_path/interval.h"
 #include "scene/shutter.h"
 
 #include <glm/vec3.hpp>
 
 #include <span>
+#include <vector>
 
 namespace streak::motion_path {
 
@@ -30,6 +32,12 @@ namespace streak::motion_path {
 enum class OpaqueWeights { Slices, Exact };
 float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights,
                      OpaqueWeights opaque = OpaqueWeights::Slices, const ShutterWindow& window = {});
+
+// resolveWeights(sorted, -, weights, OpaqueWeights::Exact, window) for a list of opaque
+// intervals, also appending where each shows to `visible` (in list order): its span minus the
+// union of the spans before it, as disjoint time spans in time order, each with its exposure.
+float resolveOpaqueSpans(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window,
+                         std::vector<exposure::VisibleSpan>& visible);
 
 // The resolved colour, from the intervals' own colours.
 glm::vec3 resolveIntervals(std::span<const Interval> sorted, int numBits, const glm::vec3& background,

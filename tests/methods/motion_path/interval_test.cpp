@@ -236,3 +236,169 @@ TEST(DepthTimeSort, ChoosesAsTheFullSelectionDoes) {
 }
 
 }  // namespace streak::motion_path
+
+namespace streak::motion_path {
+
+namespace {
+
+// A random surface at one sample: `pieces` abutting linear intervals over a random time span,
+// its depth a random polyline in [1, 4] (a finely keyed motion), all with the surface's id.
+void addRandomSurface(Rng& rng, std::uint32_t id, int pieces, std::vector<Interval>& list) {
+    float t0 = rng.uniform(), t1 = rng.uniform();
+    if (t0 > t1) std::swap(t0, t1);
+    t0 = std::min(t0, 0.95f), t1 = std::max(t1, t0 + 0.05f);
+    float depth = rng.uniform(1.0f, 4.0f);
+    for (int p = 0; p < pieces; ++p) {
+        const float a = t0 + (t1 - t0) * float(p) / float(pieces), b = p + 1 == pieces ? t1 : t0 + (t1 - t0) * float(p + 1) / float(pieces);
+        const float next = std::clamp(depth + rng.uniform(-0.6f, 0.6f), 1.0f, 4.0f);
+        list.push_back(make(a, b, depth, next, id, glm::vec3(float(id + 1), 0, 0)));
+        depth = next;
+    }
+}
+
+// The exact time integral of the nearest piece's id + 1, and which id is nearest where: a sweep
+// over every end and every crossing of two linear pieces (in double); between two such times
+// the nearest piece is one piece.
+struct Sweep {
+    std::vector<double> times;
+    std::vector<int> nearest;  ///< per piece of time: the nearest id, -1 for none
+    double integral = 0.0;
+};
+
+Sweep sweepNearest(const std::vector<Interval>& pieces) {
+    Sweep sweep;
+    sweep.times = {0.0, 1.0};
+    for (const Interval& a : pieces) {
+        sweep.times.push_back(a.t0), sweep.times.push_back(a.t1);
+        for (const Interval& b : pieces) {
+            const double sa = (double(a.depth1) - a.depth0) / (double(a.t1) - a.t0), sb = (double(b.depth1) - b.depth0) / (double(b.t1) - b.t0);
+            if (sa == sb) continue;
+            const double t = (b.depth0 - sb * b.t0 - (a.depth0 - sa * a.t0)) / (sa - sb);
+            if (t > 0.0 && t < 1.0) sweep.times.push_back(t);
+        }
+    }
+    std::sort(sweep.times.begin(), sweep.times.end());
+    for (std::size_t k = 0; k + 1 < sweep.times.size(); ++k) {
+        const double t = 0.5 * (sweep.times[k] + sweep.times[k + 1]);
+        double nearest = 1e9;
+        int id = -1;
+        for (const Interval& i : pieces)
+            if (i.t0 <= t && t < i.t1) {
+                const double d = i.depth0 + (double(i.depth1) - i.depth0) * (t - i.t0) / (double(i.t1) - i.t0);
+                if (d < nearest) nearest = d, id = int(i.source);
+            }
+        sweep.nearest.push_back(id);
+        sweep.integral += (id + 1) * (sweep.times[k + 1] - sweep.times[k]);
+    }
+    return sweep;
+}
+
+}  // namespace
+
+// Merging: one run per surface, its joints as corners; gaps, other surfaces, depth jumps and
+// translucent intervals end a run; corners where nothing bends are left out.
+TEST(MergedIntervals, MergeRunsOfOneSurfaceOnly) {
+    std::vector<Interval> list{make(0.0f, 0.2f, 2, 3, 0), make(0.2f, 0.4f, 3, 2, 0), make(0.4f, 0.6f, 2, 2, 0),
+                               make(0.6f, 0.8f, 2, 2, 0), make(0.8f, 0.9f, 2, 5, 0),   // one run, 3 corners (0.6 is straight)
+                               make(0.95f, 1.0f, 5, 5, 0),                             // a gap
+                               make(0.0f, 0.5f, 4, 4, 1), make(0.5f, 1.0f, 6, 6, 1),   // a depth jump
+                               make(0.0f, 0.5f, 7, 7, 2), make(0.5f, 1.0f, 7, 8, 3)};  // another surface
+    std::vector<DepthKnot> knots;
+    const int merged = mergeAbuttingIntervals(list, 0, knots, [](std::uint32_t a, std::uint32_t b) { return a == b; });
+    EXPECT_EQ(merged, 4);
+    ASSERT_EQ(list.size(), 6u);
+    EXPECT_EQ(list[0].t0, 0.0f);
+    EXPECT_EQ(list[0].t1, 0.9f);
+    EXPECT_EQ(list[0].depth1, 5.0f);
+    ASSERT_EQ(list[0].numKnots, 3u);
+    EXPECT_EQ(knots[list[0].firstKnot].t, 0.2f);
+    EXPECT_EQ(knots[list[0].firstKnot + 2].t, 0.8f);
+    EXPECT_EQ(list[0].minDepth(), 2.0f);
+    EXPECT_EQ(list[0].maxDepth(), 5.0f);
+    EXPECT_FLOAT_EQ(depthAt(list[0], knots, 0.2f), 3.0f);
+    EXPECT_FLOAT_EQ(depthAt(list[0], knots, 0.7f), 2.0f);
+    EXPECT_FLOAT_EQ(depthAt(list[0], knots, 0.85f), 3.5f);
+    EXPECT_EQ(list[1].t0, 0.95f);
+    EXPECT_EQ(list[2].t1, 0.5f);
+    EXPECT_EQ(list[3].t0, 0.5f);
+    EXPECT_EQ(list[4].source, 2u);
+    EXPECT_EQ(list[5].source, 3u);
+
+    std::vector<Interval> translucent{make(0.0f, 0.5f, 2, 2, 0, glm::vec3(1), 0.5f), make(0.5f, 1.0f, 2, 2, 0, glm::vec3(1), 0.5f)};
+    EXPECT_EQ(mergeAbuttingIntervals(translucent, 0, knots, [](std::uint32_t, std::uint32_t) { return true; }), 0);
+}
+
+// A V-shaped polyline crosses a flat interval twice; the sort splits both crossings, and the
+// exact resolve shows the V in its middle and the flat line either side, each span where it
+// shows.
+TEST(MergedIntervals, PolylineCrossingsAreSplitAndShownWhereTheyShow) {
+    std::vector<Interval> list{make(0.0f, 0.5f, 5, 1, 0), make(0.5f, 1.0f, 1, 5, 0)};
+    std::vector<DepthKnot> knots;
+    mergeAbuttingIntervals(list, 0, knots, [](std::uint32_t a, std::uint32_t b) { return a == b; });
+    ASSERT_EQ(list.size(), 1u);
+    list.push_back(make(0.0f, 1.0f, 3, 3, 1));
+    SortCounters counters;
+    sortDepthTime(list, 90, counters, knots);
+    EXPECT_EQ(counters.splits, 2);
+    std::vector<float> weights(list.size());
+    std::vector<exposure::VisibleSpan> visible;
+    EXPECT_FLOAT_EQ(resolveOpaqueSpans(list, weights, ShutterWindow(), visible), 0.0f);
+    float v = 0.0f, flat = 0.0f;
+    for (const exposure::VisibleSpan& s : visible) {
+        const bool isV = list[s.interval].source == 0;
+        (isV ? v : flat) += s.weight;
+        if (isV) {
+            EXPECT_NEAR(s.t0, 0.25f, 1e-6f);
+            EXPECT_NEAR(s.t1, 0.75f, 1e-6f);
+        } else {
+            EXPECT_TRUE(std::abs(s.t1 - 0.25f) < 1e-6f || std::abs(s.t0 - 0.75f) < 1e-6f) << s.t0 << " " << s.t1;
+        }
+    }
+    EXPECT_NEAR(v, 0.5f, 1e-6f);
+    EXPECT_NEAR(flat, 0.5f, 1e-6f);
+}
+
+// Random stacks of finely pieced surfaces: merged into polylines, sorted and resolved, they
+// give the exact integral of the nearest surface (the sweep over their pieces), and every
+// visible span lies where its surface is the nearest.
+TEST(MergedIntervals, RandomPolylinesResolveToTheExactNearest) {
+    Rng rng(77);
+    int numCompared = 0, numMerged = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        std::vector<Interval> pieces;
+        const int surfaces = 1 + int(rng.next() % 5);
+        for (int s = 0; s < surfaces; ++s) addRandomSurface(rng, std::uint32_t(s), 1 + int(rng.next() % 12), pieces);
+        const Sweep sweep = sweepNearest(pieces);
+        std::vector<Interval> list = pieces;
+        std::vector<DepthKnot> knots;
+        numMerged += mergeAbuttingIntervals(list, 0, knots, [](std::uint32_t a, std::uint32_t b) { return a == b; });
+        EXPECT_EQ(int(list.size()), surfaces);
+        SortCounters counters;
+        sortDepthTime(list, 2048, counters, knots);
+        if (counters.cycles > 0) continue;
+        ++numCompared;
+        std::vector<float> weights(list.size());
+        std::vector<exposure::VisibleSpan> visible;
+        const float background = resolveOpaqueSpans(list, weights, ShutterWindow(), visible);
+        double got = 0.0, none = 0.0;
+        for (std::size_t i = 0; i < list.size(); ++i) got += double(weights[i]) * (list[i].source + 1);
+        for (std::size_t k = 0; k < sweep.nearest.size(); ++k)
+            if (sweep.nearest[k] < 0) none += sweep.times[k + 1] - sweep.times[k];
+        EXPECT_NEAR(got, sweep.integral, 2e-4) << "trial " << trial;
+        EXPECT_NEAR(background, none, 1e-4) << "trial " << trial;
+        // Each visible span: its interval's surface is the nearest at its middle, and the spans
+        // of an interval add up to its weight.
+        std::vector<double> spanSum(list.size(), 0.0);
+        for (const exposure::VisibleSpan& s : visible) {
+            spanSum[s.interval] += s.weight;
+            const double t = 0.5 * (double(s.t0) + s.t1);
+            const std::size_t k = std::size_t(std::upper_bound(sweep.times.begin(), sweep.times.end(), t) - sweep.times.begin()) - 1;
+            if (s.t1 - s.t0 > 1e-4f) EXPECT_EQ(sweep.nearest[k], int(list[s.interval].source)) << "trial " << trial << " at " << t;
+        }
+        for (std::size_t i = 0; i < list.size(); ++i) EXPECT_NEAR(spanSum[i], weights[i], 1e-5) << "trial " << trial;
+    }
+    EXPECT_GT(numCompared, 360);
+    EXPECT_GT(numMerged, 1000);
+}
+
+}  // namespace streak::motion_path

@@ -108,7 +108,9 @@ TEST(MotionPathRenderer, MultiKeyAndCameraMotionAgreeWithTheReference) {
     EXPECT_EQ(stats.counter("segments_per_triangle"), 4.0);
     EXPECT_GT(psnr(mp, render("accumulation", cube, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong)), 40.0);
 
+    // The pan with its camera turned 40 degrees over the shutter, so screen paths bend.
     Scene pan = makeBuiltinScene("pan", OptionMap());
+    pan.camera.close = CameraPose::lookAt(glm::vec3(0.7f, 0.9f, 5.0f), glm::vec3(6.0f, 0.0f, -1.0f));
     validateScene(pan);
     const Image ref = render("accumulation", pan, 128, 96, withOption("samples", "1024"), nullptr, ShadingMode::Phong);
     RenderStats panStats;
@@ -116,7 +118,7 @@ TEST(MotionPathRenderer, MultiKeyAndCameraMotionAgreeWithTheReference) {
     EXPECT_EQ(panStats.counter("segments_per_triangle"), 1.0);
     const double eight = psnr(render("motion-path", pan, 128, 96, withOption("curve-segments", "8"), nullptr, ShadingMode::Phong), ref);
     EXPECT_GT(eight, 45.0);
-    EXPECT_GT(eight, one + 1.0);
+    EXPECT_GT(eight, one + 1.0) << one << " " << eight;
 }
 
 TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
