@@ -3,7 +3,9 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <bit>
+#include <limits>
 #include <cmath>
 #include <utility>
 
@@ -67,6 +69,21 @@ bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const 
         if (most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
     }
     return false;
+}
+
+bool MovingTriangle::stillRowRange(double y, int orientation, double& xLo, double& xHi) const {
+    xLo = -std::numeric_limits<double>::infinity(), xHi = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < 3; ++e) {
+        // staysOutside fails only where o (cx x + cy y + cz) >= -2 tol (|cx| |x| + |cy| |y| + |cz|),
+        // so where o cx x >= r with the tolerance at |x| = 1.
+        const glm::dvec3 c = m_c[e] * double(orientation);
+        const double tolerance = 2.0 * kOnEdgeTolerance * (m_termBound[e].x + m_termBound[e].y * std::abs(y) + m_termBound[e].z);
+        const double r = -tolerance - c.y * y - c.z;
+        if (c.x > 0.0) xLo = std::max(xLo, r / c.x);
+        else if (c.x < 0.0) xHi = std::min(xHi, r / c.x);
+        else if (r > 0.0) return false;
+    }
+    return xLo <= xHi;
 }
 
 int MovingTriangle::stillSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,

@@ -31,6 +31,12 @@ public:
     // inside test's on-edge tolerance: insideSpans would find no span there. It costs a third
     // of insideSpans, so methods ask it first where most samples of a box are empty.
     bool staysOutside(const glm::dvec2& ndc, int orientation) const;
+    // For a still triangle of orientation +1 or -1: the NDC x range [xLo, xHi] of the sample
+    // row at height y outside which staysOutside(ndc, orientation) holds at every |ndc.x| <= 1
+    // (each edge, a line, bounds x on one side; its on-edge tolerance is taken at |x| = 1, so the
+    // range is a little wider than the exact one). Returns false when the whole row stays
+    // outside. A box loop then visits only the row's samples in range, a rasterizer's span.
+    bool stillRowRange(double y, int orientation, double& xLo, double& xHi) const;
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;

@@ -193,6 +193,57 @@ TEST(MovingTriangleStaysOutside, NeverSkipsASampleWithASpan) {
     EXPECT_GT(nearEdge, 7000);
 }
 
+// A still triangle's row range holds every sample that staysOutside does not cull: random
+// triangles (both orientations, axis-aligned edges), random rows, and points inside, on edges
+// and near them; beyond the range staysOutside holds, so a box loop may skip those samples.
+TEST(MovingTriangleStill, RowRangesHoldEverySampleNotCulled) {
+    Rng rng(57);
+    int inRange = 0, outOfRange = 0;
+    for (int i = 0; i < 500; ++i) {
+        auto randomCorner = [&] { return glm::vec2(rng.uniform(-1, 1), rng.uniform(-1, 1)); };
+        std::array<glm::vec4, 3> corners = atW1(randomCorner(), randomCorner(), randomCorner());
+        if (i % 7 == 0) corners[1] = glm::vec4(corners[0].x, corners[2].y, 0.0f, corners[0].w);
+        if (i % 11 == 0) corners[2].y = corners[0].y;  // a horizontal edge: rows along it
+        if (i % 3 == 0)
+            for (glm::vec4& c : corners) c *= rng.uniform(0.5f, 3.0f);
+        const MovingTriangle still(corners, corners);
+        for (const int orientation : {1, -1}) {
+            for (int k = 0; k < 40; ++k) {
+                const int e = k % 3;
+                const glm::dvec2 a(corners[e].x / corners[e].w, corners[e].y / corners[e].w);
+                const glm::dvec2 b(corners[(e + 1) % 3].x / corners[(e + 1) % 3].w, corners[(e + 1) % 3].y / corners[(e + 1) % 3].w);
+                // On an edge, near one, or anywhere.
+                glm::dvec2 p = a + double(rng.uniform(0, 1)) * (b - a);
+                if (k % 4 == 1) p += glm::dvec2(rng.uniform(-1, 1), rng.uniform(-1, 1)) * 1e-6;
+                if (k % 4 == 2) p = glm::dvec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
+                if (k % 4 == 3) p.y = a.y;
+                p = glm::clamp(p, -0.999, 0.999);
+                double xLo = 0.0, xHi = 0.0;
+                const bool hasRange = still.stillRowRange(p.y, orientation, xLo, xHi);
+                if (still.staysOutside(p, orientation)) continue;
+                ASSERT_TRUE(hasRange) << "triangle " << i << " point " << k;
+                ASSERT_GE(p.x, xLo) << "triangle " << i << " point " << k;
+                ASSERT_LE(p.x, xHi) << "triangle " << i << " point " << k;
+                ++inRange;
+            }
+            // Beyond the range, every point of the row stays outside.
+            for (int k = 0; k < 10; ++k) {
+                const double y = rng.uniform(-1, 1);
+                double xLo = 0.0, xHi = 0.0;
+                if (!still.stillRowRange(y, orientation, xLo, xHi)) xLo = 2.0, xHi = -2.0;
+                for (int j = 0; j < 50; ++j) {
+                    const double x = rng.uniform(-0.999, 0.999);
+                    if (x >= xLo && x <= xHi) continue;
+                    EXPECT_TRUE(still.staysOutside({x, y}, orientation)) << "triangle " << i;
+                    ++outOfRange;
+                }
+            }
+        }
+    }
+    EXPECT_GT(inRange, 10000);
+    EXPECT_GT(outOfRange, 50000);
+}
+
 TEST(MovingTriangleStill, TakesTheRasterizersPathWithTheMovingPathsResults) {
     // A triangle with no motion (open == close) takes the still path: its spans must be the
     // solved path's bit for bit, with the same root counts, at random points, at points on its

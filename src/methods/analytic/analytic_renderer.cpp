@@ -25,6 +25,9 @@ namespace {
 
 using exposure::ExposureInterval;
 
+constexpr double kRowMargin = 1e-9;  ///< NDC: a millionth of a pixel at 2000 pixels
+constexpr int kRowSpanMinWidth = 4;  ///< pixels: narrower boxes test every sample
+
 constexpr int kTileSize = 16;
 
 struct Options {
@@ -185,36 +188,64 @@ private:
             // Depth on the triangle is a convex combination of its corners' depths, so only a
             // segment reaching nearer than the near plane needs the depth check.
             const bool checkNearPlane = !(segment.isInFront() && segment.nearness <= 1.0f / scene.camera.zNear);
-            for (int py = region.y0; py <= region.y1; ++py)
-                for (int px = region.x0; px <= region.x1; ++px)
-                    for (int s = 0; s < spp; ++s) {
-                        const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                        const glm::dvec2 ndc = scratch.sampleNdc[sample];
-                        if (frame.options.tileCull && moving.staysOutside(ndc, segment.orientation)) {
-                            ++counters.samplesCulled;
-                            continue;
-                        }
-                        std::array<double, 8> b;
-                        const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
-                        for (int k = 0; k + 1 < n; k += 2) {
-                            // (A still triangle is the same at both ends.)
-                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
-                            const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
-                            // The triangle cannot turn over inside a span (its edges would have to
-                            // pass the sample), so its facing at mid-span is its facing throughout.
-                            if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
-                                ++counters.culledBackFacing;
-                                continue;
-                            }
-                            exposure::TileRecord r;
-                            r.sample = sample;
-                            const double dt = double(segment.t1) - double(segment.t0);
-                            r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
-                            r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
-                            r.interval.source = index;
-                            scratch.records.push_back(r);
-                        }
+            // One sample of the segment's box: its exact spans, as records.
+            auto visit = [&](int px, int py, int s) __attribute__((always_inline)) {
+                const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                const glm::dvec2 ndc = scratch.sampleNdc[sample];
+                if (frame.options.tileCull && moving.staysOutside(ndc, segment.orientation)) {
+                    ++counters.samplesCulled;
+                    return;
+                }
+                std::array<double, 8> b;
+                const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
+                for (int k = 0; k + 1 < n; k += 2) {
+                    // (A still triangle is the same at both ends.)
+                    const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
+                    const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
+                    // The triangle cannot turn over inside a span (its edges would have to
+                    // pass the sample), so its facing at mid-span is its facing throughout.
+                    if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
+                        ++counters.culledBackFacing;
+                        continue;
                     }
+                    exposure::TileRecord r;
+                    r.sample = sample;
+                    const double dt = double(segment.t1) - double(segment.t0);
+                    r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
+                    r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
+                    r.interval.source = index;
+                    scratch.records.push_back(r);
+                }
+            };
+            // A still segment visits each sample row's span only (stillRowRange): the samples
+            // beyond it stay outside, which staysOutside would find one by one (they are
+            // counted as culled all the same). A sample's x is the row's first plus whole
+            // pixel steps to within 1e-15; kRowMargin leaves far more than that either side.
+            // (A box under kRowSpanMinWidth pixels wide tests its few samples faster than it
+            // finds each row's span: with row spans for every box, the sub-pixel spheres' interval
+            // phase at --aa 8 took 33% longer, ToyCar's 7%.)
+            const bool isRowSpan = frame.options.tileCull && moving.isStill() && segment.orientation != 0 &&
+                                   region.x1 - region.x0 + 1 >= kRowSpanMinWidth;
+            const double step = 2.0 / double(width);
+            for (int py = region.y0; py <= region.y1; ++py) {
+                if (!isRowSpan) {
+                    for (int px = region.x0; px <= region.x1; ++px)
+                        for (int s = 0; s < spp; ++s) visit(px, py, s);
+                    continue;
+                }
+                for (int s = 0; s < spp; ++s) {
+                    const glm::dvec2 first = scratch.sampleNdc[(std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp + s];
+                    int pxFirst = region.x1 + 1, pxLast = region.x1;
+                    double xLo, xHi;
+                    if (moving.stillRowRange(first.y, segment.orientation, xLo, xHi)) {
+                        const double limit = double(region.x1 - region.x0) + 2.0;
+                        pxFirst = std::max(region.x0, region.x0 + int(std::ceil(std::clamp((xLo - kRowMargin - first.x) / step, -limit, limit))));
+                        pxLast = std::min(region.x1, region.x0 + int(std::floor(std::clamp((xHi + kRowMargin - first.x) / step, -limit, limit))));
+                    }
+                    counters.samplesCulled += (region.x1 - region.x0 + 1) - std::max(0, pxLast - pxFirst + 1);
+                    for (int px = pxFirst; px <= pxLast; ++px) visit(px, py, s);
+                }
+            }
         }
         // Per sample: resolve the intervals exactly and shade what shows.
         const exposure::ExactDepthOfSource exactDepth = [&](std::uint32_t source, float t, const glm::dvec2& ndc) {
