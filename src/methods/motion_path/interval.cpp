@@ -77,12 +77,11 @@ bool splitAtCrossing(Interval& a, Interval& b, Interval& aTail, Interval& bTail,
         int side = 0;
         bool isCrossed = false;
         float previousT = ts, previousD = 0.0f;
-        bool isFirst = true;
         forEachCorner(a, b, knots, ts, te, [&](float c) {
             const float d = depthAt(a, knots, c) - depthAt(b, knots, c);
-            if (!isFirst && side != 0 && float(side) * previousD > 0.0f && float(side) * d <= 0.0f)
+            // (side is 0 until a corner beyond the tolerance, so the first corner never pairs.)
+            if (side != 0 && float(side) * previousD > 0.0f && float(side) * d <= 0.0f)
                 t = previousT + (c - previousT) * previousD / (previousD - d);
-            isFirst = false;
             previousT = c, previousD = d;
             const int s = d > eps ? 1 : d < -eps ? -1 : 0;
             if (s == 0) return true;

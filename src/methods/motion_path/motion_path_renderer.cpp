@@ -408,7 +408,7 @@ private:
             scratch.visibleRuns[i + 1] = scratch.visibleRuns[i];
             if (end == begin) continue;
             const std::span<const Interval> list = std::span<const Interval>(scratch.sorted).subspan(begin, end - begin);
-            if (options.exactWeights && std::all_of(list.begin(), list.end(), [](const Interval& x) { return x.alpha >= 1.0f; })) {
+            if (options.exactWeights && !motion_path::hasTranslucentInterval(list)) {
                 // Exact opaque weights also say where each interval shows: a partly hidden one
                 // is shaded over the time it shows.
                 const std::size_t firstSpan = scratch.visible.size();

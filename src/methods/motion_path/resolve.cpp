@@ -87,10 +87,13 @@ float resolveTranslucent(std::span<const Interval> sorted, int numBits, std::spa
 
 }  // namespace
 
+bool hasTranslucentInterval(std::span<const Interval> sorted) {
+    return std::any_of(sorted.begin(), sorted.end(), [](const Interval& i) { return i.alpha < 1.0f; });
+}
+
 float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights, OpaqueWeights opaque,
                      const ShutterWindow& window) {
-    const bool isTranslucent = std::any_of(sorted.begin(), sorted.end(), [](const Interval& i) { return i.alpha < 1.0f; });
-    if (isTranslucent) return resolveTranslucent(sorted, numBits, weights, window);
+    if (hasTranslucentInterval(sorted)) return resolveTranslucent(sorted, numBits, weights, window);
     return opaque == OpaqueWeights::Exact ? resolveOpaqueExact(sorted, weights, window, nullptr) : resolveOpaque(sorted, numBits, weights, window);
 }
 

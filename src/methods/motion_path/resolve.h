@@ -33,6 +33,10 @@ enum class OpaqueWeights { Slices, Exact };
 float resolveWeights(std::span<const Interval> sorted, int numBits, std::span<float> weights,
                      OpaqueWeights opaque = OpaqueWeights::Slices, const ShutterWindow& window = {});
 
+// True when some interval is translucent (alpha < 1): resolveWeights then keeps a transmittance
+// per slice, whatever the opaque weights.
+bool hasTranslucentInterval(std::span<const Interval> sorted);
+
 // resolveWeights(sorted, -, weights, OpaqueWeights::Exact, window) for a list of opaque
 // intervals, also appending where each shows to `visible` (in list order): its span minus the
 // union of the spans before it, as disjoint time spans in time order, each with its exposure.
