@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -26,7 +27,9 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
     m_numSegments = segmentCount(scene, curveSegments);
 
     const int n = m_numSegments;
-    std::vector<std::vector<glm::vec3>> positions(std::size_t(n) + 1), normals(std::size_t(n) + 1);
+    std::vector<std::vector<glm::vec3>>& positions = m_positions;
+    std::vector<std::vector<glm::vec3>>& normals = m_normals;
+    positions.resize(std::size_t(n) + 1), normals.resize(std::size_t(n) + 1);
     std::vector<glm::mat4> clipFromWorld(std::size_t(n) + 1);
     tbb::parallel_for(0, n + 1, [&](int k) {
         const float t = float(k) / float(n);
@@ -49,10 +52,8 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
             const glm::uvec3 v = triangles[tri].vertices;
             float minW = std::numeric_limits<float>::max();
             for (int i = 0; i < 3; ++i) {
-                s.world0[i] = positions[k][v[i]], s.world1[i] = positions[k + 1][v[i]];
-                s.normal0[i] = normals[k][v[i]], s.normal1[i] = normals[k + 1][v[i]];
-                s.clip0[i] = clipFromWorld[k] * glm::vec4(s.world0[i], 1.0f);
-                s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(s.world1[i], 1.0f);
+                s.clip0[i] = clipFromWorld[k] * glm::vec4(positions[k][v[i]], 1.0f);
+                s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(positions[k + 1][v[i]], 1.0f);
                 minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
             }
             s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
@@ -71,6 +72,19 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
 
 const TriangleSegment& SegmentedGeometry::segmentAt(std::uint32_t triangle, float t) const {
     return segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1));
+}
+
+SegmentedGeometry::WorldCorners SegmentedGeometry::cornersOf(const TriangleSegment& segment) const {
+    // Only this geometry's own segments carry their index in their address.
+    assert(&segment >= m_segments.data() && &segment < m_segments.data() + m_segments.size());
+    const std::size_t k = std::size_t(&segment - m_segments.data()) % std::size_t(m_numSegments);
+    const glm::uvec3 v = m_flat.triangles()[segment.triangle].vertices;
+    WorldCorners c;
+    for (int i = 0; i < 3; ++i) {
+        c.world0[i] = m_positions[k][v[i]], c.world1[i] = m_positions[k + 1][v[i]];
+        c.normal0[i] = m_normals[k][v[i]], c.normal1[i] = m_normals[k + 1][v[i]];
+    }
+    return c;
 }
 
 std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {

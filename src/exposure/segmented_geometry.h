@@ -14,15 +14,15 @@
 
 namespace streak::exposure {
 
-// One triangle over one linear segment [t0, t1] of the shutter: its corners at both ends, in
-// clip space (for the edge equations) and in world space (for shading). Between the ends every
-// corner moves linearly, in clip space and in world space alike.
+// One triangle over one linear segment [t0, t1] of the shutter: its corners at both ends in
+// clip space (for the edge equations). Between the ends every corner moves linearly, in clip
+// space and in world space alike; the world-space corners (for shading) are the geometry's
+// vertices at the segment's ends (SegmentedGeometry::cornersOf), kept per vertex, not per
+// triangle segment: that is 144 bytes less for each of a dense mesh's millions of segments.
 struct TriangleSegment {
     std::uint32_t triangle = 0;
     float t0 = 0.0f, t1 = 0.0f;
     std::array<glm::vec4, 3> clip0{}, clip1{};
-    std::array<glm::vec3, 3> world0{}, world1{};
-    std::array<glm::vec3, 3> normal0{}, normal1{};  ///< zero for meshes without normals
     float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
     std::int8_t orientation = 0;                     ///< +1 front facing throughout, -1 back facing throughout, 0 turns over (or reaches behind the eye)
     bool isBackFacingThroughout = false;             ///< single-sided and seen from behind at every time: never visible
@@ -54,6 +54,12 @@ public:
     }
     // The segment of a triangle holding shutter time t.
     const TriangleSegment& segmentAt(std::uint32_t triangle, float t) const;
+    // A segment's corners in world space at its start and end, and their normals (zero for
+    // meshes without normals).
+    struct WorldCorners {
+        std::array<glm::vec3, 3> world0, world1, normal0, normal1;
+    };
+    WorldCorners cornersOf(const TriangleSegment& segment) const;
     std::int64_t numBackFacing() const { return m_numBackFacing; }
 
     // The pixels each segment may cover over its time, for binning: with all corners in front of
@@ -66,6 +72,7 @@ private:
     FlatGeometry m_flat;
     int m_numSegments = 1;
     std::vector<TriangleSegment> m_segments;
+    std::vector<std::vector<glm::vec3>> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
 };
 

@@ -60,9 +60,10 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     }
     std::array<glm::vec3, 3> world, normal;
     const float uf = float(u);
+    const SegmentedGeometry::WorldCorners corners = m_geometry.cornersOf(segment);
     for (int i = 0; i < 3; ++i) {
-        world[i] = glm::mix(segment.world0[i], segment.world1[i], uf);
-        normal[i] = glm::mix(segment.normal0[i], segment.normal1[i], uf);
+        world[i] = glm::mix(corners.world0[i], corners.world1[i], uf);
+        normal[i] = glm::mix(corners.normal0[i], corners.normal1[i], uf);
     }
     const FlatGeometry& flat = m_geometry.flat();
     out = flat.surfacePoint(flat.triangles()[m_triangle], world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
@@ -71,8 +72,9 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
 
 bool TriangleSurfacePoint::isStill(float t0, float t1) const {
     const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t0);
-    return &segment == &m_geometry.segmentAt(m_triangle, t1) && segment.world0 == segment.world1 && segment.normal0 == segment.normal1 &&
-           m_geometry.scene().camera.isStatic();
+    if (&segment != &m_geometry.segmentAt(m_triangle, t1) || !m_geometry.scene().camera.isStatic()) return false;
+    const SegmentedGeometry::WorldCorners corners = m_geometry.cornersOf(segment);
+    return corners.world0 == corners.world1 && corners.normal0 == corners.normal1;
 }
 
 // uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).

@@ -100,6 +100,30 @@ TEST(AnalyticRenderer, CullingTilesAndSamplesChangesNoImage) {
     EXPECT_GT(samples, 0.0);
 }
 
+TEST(AnalyticRenderer, SweptHullSkipsTheSamplesAFastDiagonalMoveLeavesOut) {
+    // Small quads moving diagonally across the frame: each one's box is mostly empty, and its
+    // swept hull holds every sample it covers. The image is bit for bit the one without the
+    // hull, which solves at fewer than half the samples the other culls leave.
+    Scene scene = test::emptyScene();
+    const test::PixelCamera cam{96, 72, 3.0f};
+    const std::uint32_t red = test::addMaterial(scene, {1, 0, 0}), green = test::addMaterial(scene, {0, 1, 0});
+    for (int i = 0; i < 40; ++i) {  // 1.5-pixel quads moving 40 by 30 pixels, the rows apart
+        const float x = float(i % 8) * 7.0f + 0.3f, y = float(i / 8) * 8.0f + 0.7f;
+        test::addPixelQuad(scene, cam, i % 2 ? red : green, x, y, x + 1.5f, y + 1.5f, 40.0f, 30.0f);
+    }
+    validateScene(scene);
+    RenderStats withHull, withoutHull;
+    const Image hulled = render("analytic", scene, 96, 72, OptionMap(), &withHull, ShadingMode::Phong, 2);
+    const Image boxed = render("analytic", scene, 96, 72, withOption("hull-cull", "0"), &withoutHull, ShadingMode::Phong, 2);
+    EXPECT_EQ(psnr(hulled, boxed), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(withHull.counter("intervals"), withoutHull.counter("intervals"));
+    const double solved = withHull.counter("roots_two") + withHull.counter("roots_linear") + withHull.counter("roots_none");
+    const double solvedInBox = withoutHull.counter("roots_two") + withoutHull.counter("roots_linear") + withoutHull.counter("roots_none");
+    EXPECT_GT(withHull.counter("intervals"), 1000.0);
+    EXPECT_GT(solved, 0.0);
+    EXPECT_LT(solved, 0.5 * solvedInBox);
+}
+
 TEST(AnalyticRenderer, DepthOrderCheckFindsNoErrorOnPlanarTranslation) {
     // Fronto-parallel quads translating in depth have exactly linear view depth at a pixel: the
     // linearisation never misorders them.

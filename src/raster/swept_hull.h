@@ -1,0 +1,48 @@
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+
+namespace streak::raster {
+
+// SweptHull bounds where a moving triangle can cover a sample over its whole segment. With every
+// corner in front of the eye at both ends (clip w > 0, so > 0 in between: w is linear in u), each
+// corner's NDC path is the straight segment between its projected ends, and the triangle at any
+// u lies in the convex hull of its six projected end corners. A box loop over a moving
+// triangle's motion box then visits per sample row only the hull's x range: for a small triangle
+// moving diagonally (a dense mesh under a camera pan) that is a thin band of the box, where
+// MovingTriangle::staysOutside, which asks one edge at a time, culls little.
+//
+// The hull is widened by `margin()` so that it holds every sample MovingTriangle::insideSpans
+// can find inside, on-edge tolerance included: that tolerance accepts a sample within
+// d = 4 kOnEdgeTolerance (NDC, for |x|, |y| <= 1) of an edge's line, so at most
+// d / sin(theta / 2) from a corner of angle theta. The margin takes the smallest corner angle
+// of the two end poses; a triangle sharper than kMaxMargin allows gets no hull.
+class SweptHull {
+public:
+    static constexpr double kMaxMargin = 1e-2;  ///< NDC: beyond this a hull is no tighter than the box
+
+    // Builds the hull of the segment (corners open -> close). Returns false, leaving no hull,
+    // when a corner is not in front of the eye at an end, an end pose is degenerate or its
+    // margin would exceed kMaxMargin.
+    bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
+
+    // The NDC x range [xLo, xHi] of the widened hull on the sample row at height y. Returns
+    // false when the row misses it.
+    bool rowRange(double y, double& xLo, double& xHi) const;
+
+    double margin() const { return m_margin; }
+    double area() const { return m_area; }  ///< NDC, unwidened
+    int numVertices() const { return m_count; }
+
+private:
+    std::array<glm::dvec2, 6> m_vertex{};  ///< counter-clockwise
+    int m_count = 0;
+    double m_margin = 0.0;
+    double m_area = 0.0;
+    double m_yLo = 0.0, m_yHi = 0.0;  ///< the widened hull's height range
+};
+
+}  // namespace streak::raster

@@ -1,0 +1,71 @@
+#include "exposure/segmented_geometry.h"
+#include "support/test_scenes.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace streak::exposure {
+
+namespace {
+
+void expectNear(const glm::vec3& a, const glm::vec3& b, const char* what) {
+    EXPECT_NEAR(a.x, b.x, 1e-6f) << what;
+    EXPECT_NEAR(a.y, b.y, 1e-6f) << what;
+    EXPECT_NEAR(a.z, b.z, 1e-6f) << what;
+}
+
+}  // namespace
+
+TEST(SegmentedGeometry, CornersAreEachMeshsVerticesAtTheSegmentEnds) {
+    // Two quads moving linearly in world space under a moving camera, so each triangle's motion
+    // is cut into curveSegments = 4 segments. Segment s of a triangle spans [s/4, (s+1)/4]; its
+    // world corners must be that triangle's own vertices at those times (the closed form
+    // open + t (close - open)), and its normals the mesh's normals there, also for the second
+    // mesh, whose vertices come after the first's in the flat geometry.
+    Scene scene = test::emptyScene();
+    const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f));
+    const std::array<glm::vec3, 4> openA{glm::vec3(-1, 1, -4), glm::vec3(-1, -1, -4), glm::vec3(1, -1, -4), glm::vec3(1, 1, -4)};
+    std::array<glm::vec3, 4> closeA = openA, openB = openA, closeB = openA;
+    for (glm::vec3& p : closeA) p += glm::vec3(1.0f, 0.0f, 0.0f);
+    for (glm::vec3& p : openB) p += glm::vec3(0.0f, 3.0f, -2.0f);
+    for (glm::vec3& p : closeB) p += glm::vec3(0.0f, 1.0f, -1.0f);
+    test::addMovingQuad(scene, m, openA, closeA);
+    test::addMovingQuad(scene, m, openB, closeB);
+    // The second mesh turns its normal from +z to +x over the shutter (per key, linearly).
+    scene.meshes[1].normals = std::vector<glm::vec3>(4, glm::vec3(0, 0, 1));
+    scene.meshes[1].normals.resize(8, glm::vec3(1, 0, 0));
+    scene.camera.close.position = glm::vec3(0.5f, 0.0f, 0.0f);
+    validateScene(scene);
+
+    const SegmentedGeometry geometry(scene, 4.0f / 3.0f, 4);
+    ASSERT_EQ(geometry.numSegments(), 4);
+    ASSERT_EQ(geometry.flat().triangles().size(), 4u);
+    for (std::uint32_t tri = 0; tri < 4; ++tri) {
+        const bool isB = tri >= 2;
+        const Mesh& mesh = scene.meshes[isB ? 1 : 0];
+        const glm::uvec3 v = mesh.triangles[tri % 2];
+        for (int s = 0; s < 4; ++s) {
+            const TriangleSegment& segment = geometry.segment(tri, s);
+            const SegmentedGeometry::WorldCorners c = geometry.cornersOf(segment);
+            const float ta = float(s) / 4.0f, tb = float(s + 1) / 4.0f;
+            for (int i = 0; i < 3; ++i) {
+                const glm::vec3 open = mesh.positions[v[i]], close = mesh.positions[4 + v[i]];
+                expectNear(c.world0[i], open + ta * (close - open), "world corner at the segment's start");
+                expectNear(c.world1[i], open + tb * (close - open), "world corner at the segment's end");
+                const glm::vec3 n0 = isB ? glm::mix(glm::vec3(0, 0, 1), glm::vec3(1, 0, 0), ta) : glm::vec3(0.0f);
+                const glm::vec3 n1 = isB ? glm::mix(glm::vec3(0, 0, 1), glm::vec3(1, 0, 0), tb) : glm::vec3(0.0f);
+                expectNear(c.normal0[i], n0, "normal at the segment's start (zero without normals)");
+                expectNear(c.normal1[i], n1, "normal at the segment's end");
+                // The clip-space corners are the same vertices seen by the camera at those times.
+                const glm::vec4 clip0 = scene.camera.clipFromWorld(ta, 4.0f / 3.0f) * glm::vec4(c.world0[i], 1.0f);
+                const glm::vec4 clip1 = scene.camera.clipFromWorld(tb, 4.0f / 3.0f) * glm::vec4(c.world1[i], 1.0f);
+                for (int j = 0; j < 4; ++j) {
+                    EXPECT_NEAR(segment.clip0[i][j], clip0[j], 1e-5f);
+                    EXPECT_NEAR(segment.clip1[i][j], clip1[j], 1e-5f);
+                }
+            }
+        }
+    }
+}
+
+}  // namespace streak::exposure
