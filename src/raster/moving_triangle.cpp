@@ -131,8 +131,9 @@ int MovingTriangle::solvedSpans(const glm::dvec2& ndc, double zNear, bool checkN
     return count;
 }
 
-bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
+std::array<double, 4> orientationBernstein(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
     auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
+    std::array<double, 4> coefficients{};
     for (int k = 0; k <= 3; ++k) {
         double sum = 0.0;
         int count = 0;
@@ -144,8 +145,14 @@ bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::arr
             sum += glm::dot(r0, glm::cross(r1, r2));
             ++count;
         }
-        if (!(sum / count < 0.0)) return false;
+        coefficients[std::size_t(k)] = sum / count;
     }
+    return coefficients;
+}
+
+bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
+    for (const double c : orientationBernstein(open, close))
+        if (!(c < 0.0)) return false;
     return true;
 }
 

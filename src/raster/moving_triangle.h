@@ -89,11 +89,15 @@ private:
     bool m_isStill = false;                         ///< every m_delta zero
 };
 
+// The orientation of a moving triangle is det(c0, c1, c2)(u) of its corners (x, y, w), a cubic
+// in u; the corners are linear in u, so the determinant is multilinear in them and its
+// Bernstein coefficients (returned, k = 0..3) are the means of the determinants that take k
+// corners from the end and 3 - k from the start. The cubic lies between the least and the
+// greatest of them on [0, 1] (convex hull property).
+std::array<double, 4> orientationBernstein(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
+
 // True when the triangle (all corners in front of the eye) is seen from its back at every u in
-// [0, 1]. Its orientation is det(c0, c1, c2)(u), a cubic in u; the corners are linear in u, so
-// the determinant is multilinear in them and its Bernstein coefficients are the means of the
-// determinants that take k corners from the end and 3 - k from the start. All negative: the
-// cubic is negative on [0, 1] (convex hull property).
+// [0, 1]: every Bernstein coefficient of its orientation is negative.
 bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
 
 }  // namespace streak::raster

@@ -1,6 +1,7 @@
 #include "raster/swept_hull.h"
 
 #include "raster/edge_equation.h"
+#include "raster/moving_triangle.h"
 
 #include <glm/geometric.hpp>
 
@@ -16,36 +17,47 @@ double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-// sin(theta / 2) of the triangle's smallest corner angle theta; 0 when it is degenerate.
-double smallestHalfAngleSine(const std::array<glm::dvec2, 3>& p) {
-    double least = 1.0;
-    for (int i = 0; i < 3; ++i) {
-        const glm::dvec2 a = p[(i + 1) % 3] - p[i], b = p[(i + 2) % 3] - p[i];
-        const double la = glm::length(a), lb = glm::length(b);
-        if (!(la > 0.0 && lb > 0.0)) return 0.0;
-        const double cosine = std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0);
-        least = std::min(least, std::sqrt(0.5 * (1.0 - cosine)));
-    }
-    return least;
-}
-
 }  // namespace
 
 bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
     m_count = 0;
     std::array<glm::dvec2, 6> points;
-    double sine = 1.0;
-    for (int end = 0; end < 2; ++end) {
-        const std::array<glm::vec4, 3>& corners = end == 0 ? open : close;
-        std::array<glm::dvec2, 3> pose;
-        for (int i = 0; i < 3; ++i) {
-            if (!(corners[i].w > 0.0f)) return false;
-            pose[i] = glm::dvec2(double(corners[i].x), double(corners[i].y)) / double(corners[i].w);
-            if (!std::isfinite(pose[i].x) || !std::isfinite(pose[i].y)) return false;
-            points[std::size_t(end * 3 + i)] = pose[i];
+    double wProduct = 1.0;
+    for (int i = 0; i < 3; ++i) {
+        for (int end = 0; end < 2; ++end) {
+            const glm::vec4& c = end == 0 ? open[i] : close[i];
+            if (!(c.w > 0.0f)) return false;
+            points[std::size_t(end * 3 + i)] = glm::dvec2(double(c.x), double(c.y)) / double(c.w);
+            if (!std::isfinite(points[std::size_t(end * 3 + i)].x) || !std::isfinite(points[std::size_t(end * 3 + i)].y)) return false;
         }
-        sine = std::min(sine, smallestHalfAngleSine(pose));
+        wProduct *= double(std::max(open[i].w, close[i].w));
     }
+    // The margin needs the sharpest corner the triangle has at any u, not only at its ends: a
+    // corner can pass close to the opposite edge in between. At corner i, sin(theta) =
+    // 2 A / (|a| |b|). Twice the NDC area is det(u) / (w0 w1 w2)(u): at least the least
+    // Bernstein coefficient's magnitude over the product of each w's greater end (w is linear in
+    // u), when all coefficients share a sign. And sin(theta / 2) >= sin(theta) / 2.
+    const std::array<double, 4> orientation = orientationBernstein(open, close);
+    double least = std::numeric_limits<double>::infinity();
+    for (const double c : orientation) {
+        if (!(c * orientation[0] > 0.0)) return false;
+        least = std::min(least, std::abs(c));
+    }
+    const double twiceArea = least / wProduct;
+    // Side i-j at u is (x_i w_j - x_j w_i, y_i w_j - y_j w_i)(u) / (w_i w_j)(u): quadratics over
+    // the product, each at most its largest Bernstein coefficient's magnitude.
+    auto longestSide = [&](int i, int j) {
+        auto most = [&](int axis) {
+            auto cross2 = [axis](const glm::vec4& a, const glm::vec4& b) { return double(a[axis]) * double(b.w) - double(b[axis]) * double(a.w); };
+            const double middle = 0.5 * (cross2(open[i], close[j]) + cross2(close[i], open[j]));
+            return std::max({std::abs(cross2(open[i], open[j])), std::abs(middle), std::abs(cross2(close[i], close[j]))});
+        };
+        const double wLeast = double(std::min(open[i].w, close[i].w)) * double(std::min(open[j].w, close[j].w));
+        return std::hypot(most(0), most(1)) / wLeast;
+    };
+    const std::array<double, 3> side{longestSide(1, 2), longestSide(2, 0), longestSide(0, 1)};  // opposite corner 0, 1, 2
+    double sine = 1.0;
+    for (int i = 0; i < 3; ++i) sine = std::min(sine, 0.5 * twiceArea / (side[std::size_t((i + 1) % 3)] * side[std::size_t((i + 2) % 3)]));
     // The on-edge tolerance's reach past a corner (see the header), and a little for rounding.
     const double reach = 4.0 * kOnEdgeTolerance;
     if (!(sine * kMaxMargin > reach)) return false;

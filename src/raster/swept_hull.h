@@ -18,15 +18,18 @@ namespace streak::raster {
 // The hull is widened by `margin()` so that it holds every sample MovingTriangle::insideSpans
 // can find inside, on-edge tolerance included: that tolerance accepts a sample within
 // d = 4 kOnEdgeTolerance (NDC, for |x|, |y| <= 1) of an edge's line, so at most
-// d / sin(theta / 2) from a corner of angle theta. The margin takes the smallest corner angle
-// of the two end poses; a triangle sharper than kMaxMargin allows gets no hull.
+// d / sin(theta / 2) from a corner of angle theta. The margin takes a lower bound of that sine
+// over the whole segment (from the orientation cubic's Bernstein bound and the longest sides),
+// since a corner can be sharper in between than at either end; a triangle sharper than
+// kMaxMargin allows gets no hull.
 class SweptHull {
 public:
     static constexpr double kMaxMargin = 1e-2;  ///< NDC: beyond this a hull is no tighter than the box
 
     // Builds the hull of the segment (corners open -> close). Returns false, leaving no hull,
-    // when a corner is not in front of the eye at an end, an end pose is degenerate or its
-    // margin would exceed kMaxMargin.
+    // when a corner is not in front of the eye at an end, the orientation cubic's Bernstein
+    // coefficients do not share a sign (it may vanish: the triangle may turn over or degenerate)
+    // or the margin would exceed kMaxMargin.
     bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
 
     // The NDC x range [xLo, xHi] of the widened hull on the sample row at height y. Returns
