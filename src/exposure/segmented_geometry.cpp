@@ -27,14 +27,12 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
     m_numSegments = segmentCount(scene, curveSegments);
 
     const int n = m_numSegments;
-    std::vector<std::vector<glm::vec3>>& positions = m_positions;
-    std::vector<std::vector<glm::vec3>>& normals = m_normals;
-    positions.resize(std::size_t(n) + 1), normals.resize(std::size_t(n) + 1);
+    m_positions.resize(std::size_t(n) + 1), m_normals.resize(std::size_t(n) + 1);
     std::vector<glm::mat4> clipFromWorld(std::size_t(n) + 1);
     tbb::parallel_for(0, n + 1, [&](int k) {
         const float t = float(k) / float(n);
-        m_flat.positionsAt(t, positions[std::size_t(k)]);
-        m_flat.normalsAt(t, normals[std::size_t(k)]);
+        m_flat.positionsAt(t, m_positions[std::size_t(k)]);
+        m_flat.normalsAt(t, m_normals[std::size_t(k)]);
         clipFromWorld[std::size_t(k)] = scene.camera.clipFromWorld(t, aspect);
     });
     const auto& triangles = m_flat.triangles();
@@ -52,8 +50,8 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curve
             const glm::uvec3 v = triangles[tri].vertices;
             float minW = std::numeric_limits<float>::max();
             for (int i = 0; i < 3; ++i) {
-                s.clip0[i] = clipFromWorld[k] * glm::vec4(positions[k][v[i]], 1.0f);
-                s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(positions[k + 1][v[i]], 1.0f);
+                s.clip0[i] = clipFromWorld[k] * glm::vec4(m_positions[k][v[i]], 1.0f);
+                s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(m_positions[k + 1][v[i]], 1.0f);
                 minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
             }
             s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;

@@ -1,5 +1,6 @@
 #include "raster/swept_hull.h"
 
+#include "raster/convex_hull.h"
 #include "raster/edge_equation.h"
 #include "raster/moving_triangle.h"
 
@@ -27,8 +28,9 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
         for (int end = 0; end < 2; ++end) {
             const glm::vec4& c = end == 0 ? open[i] : close[i];
             if (!(c.w > 0.0f)) return false;
-            points[std::size_t(end * 3 + i)] = glm::dvec2(double(c.x), double(c.y)) / double(c.w);
-            if (!std::isfinite(points[std::size_t(end * 3 + i)].x) || !std::isfinite(points[std::size_t(end * 3 + i)].y)) return false;
+            glm::dvec2& point = points[std::size_t(end * 3 + i)];
+            point = glm::dvec2(double(c.x), double(c.y)) / double(c.w);
+            if (!std::isfinite(point.x) || !std::isfinite(point.y)) return false;
         }
         wProduct *= double(std::max(open[i].w, close[i].w));
     }
@@ -63,24 +65,13 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
     if (!(sine * kMaxMargin > reach)) return false;
     m_margin = reach / sine + 1e-12;
 
-    // Andrew's monotone chain: the lower hull left to right, then the upper right to left.
-    std::sort(points.begin(), points.end(), [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-    std::array<glm::dvec2, 12> chain;
-    int k = 0;
-    for (int i = 0; i < 6; ++i) {
-        while (k >= 2 && cross(chain[k - 2], chain[k - 1], points[i]) <= 0.0) --k;
-        chain[k++] = points[i];
-    }
-    for (int i = 4, lower = k + 1; i >= 0; --i) {
-        while (k >= lower && cross(chain[k - 2], chain[k - 1], points[i]) <= 0.0) --k;
-        chain[k++] = points[i];
-    }
-    m_count = k - 1;  // the last point repeats the first
+    const ConvexHull hull = convexHull(points);
+    m_count = hull.count;
     if (m_count < 3) {  // not reached: both end poses have area
         m_count = 0;
         return false;
     }
-    std::copy(chain.begin(), chain.begin() + m_count, m_vertex.begin());
+    for (int i = 0; i < m_count; ++i) m_vertex[std::size_t(i)] = points[std::size_t(hull.index[std::size_t(i)])];
     m_yLo = std::numeric_limits<double>::infinity(), m_yHi = -m_yLo;
     m_area = 0.0;
     for (int i = 0; i < m_count; ++i) {

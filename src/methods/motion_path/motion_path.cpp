@@ -1,5 +1,7 @@
 #include "methods/motion_path/motion_path.h"
 
+#include "raster/convex_hull.h"
+
 #include <glm/vec2.hpp>
 
 #include <algorithm>
@@ -7,10 +9,6 @@
 namespace streak::motion_path {
 
 namespace {
-
-double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
 
 glm::vec4 projected(const glm::vec4& c) { return {c.x / c.w, c.y / c.w, 0.0f, 1.0f}; }
 
@@ -21,23 +19,11 @@ void addFace(MotionPath& out, const glm::vec4& a, const glm::vec4& b, const glm:
 // The convex hull of four clip-space points (all w > 0) in screen space, as a fan of at most two
 // triangles.
 void addHull(MotionPath& out, const std::array<glm::vec4, 4>& points) {
-    std::array<int, 4> order{0, 1, 2, 3};
     std::array<glm::dvec2, 4> p;
     for (int i = 0; i < 4; ++i) p[i] = {double(points[i].x) / points[i].w, double(points[i].y) / points[i].w};
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return p[a].x != p[b].x ? p[a].x < p[b].x : p[a].y < p[b].y; });
-    // Andrew's monotone chain on four points.
-    std::array<int, 8> hull{};
-    int n = 0;
-    for (int pass = 0; pass < 2; ++pass) {
-        const int start = n;
-        for (int k = 0; k < 4; ++k) {
-            const int i = pass == 0 ? order[k] : order[3 - k];
-            while (n >= start + 2 && cross(p[hull[n - 2]], p[hull[n - 1]], p[i]) <= 0.0) --n;
-            hull[n++] = i;
-        }
-        --n;  // the last point starts the other chain
-    }
-    for (int i = 1; i + 1 < n; ++i) addFace(out, points[hull[0]], points[hull[i]], points[hull[i + 1]], FaceKind::Side);
+    const raster::ConvexHull hull = raster::convexHull(p);
+    for (int i = 1; i + 1 < hull.count; ++i)
+        addFace(out, points[hull.index[0]], points[hull.index[std::size_t(i)]], points[hull.index[std::size_t(i + 1)]], FaceKind::Side);
 }
 
 }  // namespace
