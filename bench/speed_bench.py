@@ -13,6 +13,14 @@ Section static: the exact methods on the static cases against one accumulation p
 --aa (a static scene's exact answer: issue 28's target is at most 1.3 times it), per sample and
 per pixel shading, with --baseline the build before a change beside them.
 
+Section simd: analytic's interval phase at each SIMD level of its edge batches (STREAK_SIMD=
+scalar, sse2, and avx2 where the CPU has it), alternating, least of the repeats, on the static
+ToyCar and the dense camera move; the images are compared (inf: every level is exact).
+
+Section dense: issue 28's dense camera move (MetalRoughSpheresNoTextures, 1,040,213 triangles,
+the camera travelling a quarter of the frame without turning) at 240x135 --aa 2: wall, peak
+memory and phases of analytic and motion-path, with --baseline the build before beside them.
+
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
 Section memory: peak resident memory of each method (the process's maxrss) on the profile's
@@ -25,7 +33,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,threads,memory,resolution] [--repeats 3] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,threads,memory,resolution] [--repeats 3] [--plot docs]
 """
 import argparse
 import json
@@ -33,6 +41,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from benchlib import machine, pyplot  # noqa: E402
@@ -56,9 +65,16 @@ SIZES = [(256, 192), (512, 384), (1024, 768), (1920, 1080)]
 METHODS = [("motion-path", []), ("analytic", []), ("accumulation 64", ["-m", "accumulation", "--samples", "64"])]
 
 
-def run(binary, case_args, method_args, out, stats, extra=()):
-    """Renders once; returns (stats, peak resident MiB)."""
+DENSE_CAMERAS = ["--camera-pos=0.00277,0.00274,0.0103", "--camera-target=0.00277,0.00274,0",
+                 "--camera-pos-end=0.0055,0.0040,0.0100", "--camera-target-end=0.0055,0.0040,0"]
+DENSE = ("MetalRoughSpheresNoTextures camera move 240x135 aa 2", [SPHERES, *DENSE_CAMERAS, "--width", "240", "--height", "135", "--aa", "2"])
+
+
+def run(binary, case_args, method_args, out, stats, extra=(), simd=None):
+    """Renders once (at SIMD level `simd` when given); returns (stats, peak resident MiB)."""
     env = dict(os.environ)
+    if simd:
+        env["STREAK_SIMD"] = simd
     if os.path.dirname(binary) not in ("", "build") and os.path.exists(os.path.join(os.path.dirname(binary), "libstreak.so")):
         env["LD_LIBRARY_PATH"] = os.path.dirname(binary)  # a saved baseline with its own library
     args = [binary, "render", *case_args, *method_args, *extra, "-o", out, "--stats", stats]
@@ -134,6 +150,52 @@ def static(args, tmp):
     print()
 
 
+def simd(args, tmp):
+    print("### Edge batches at each SIMD level: analytic's intervals phase (ms, least of the repeats)\n")
+    probe, _ = run(args.streak, ["builtin:cubes", "--width", "32", "--height", "24"], ["-m", "analytic"],
+                   os.path.join(tmp, "p.exr"), os.path.join(tmp, "s.json"))
+    levels = ["scalar", "sse2"] + (["avx2"] if probe["info"].get("simd") == "avx2" else [])
+    print("| scene | " + " | ".join(levels) + " | render, " + " | render, ".join(levels) + " | images apart |")
+    print("|---|" + "---:|" * (2 * len(levels) + 1))
+    for case, case_args in [CASES[2], DENSE, CASES[1]]:
+        if not os.path.exists(case_args[0]):
+            continue
+        best = {}
+        for _ in range(args.repeats):
+            for level in levels:
+                stats, _ = run(args.streak, case_args, ["-m", "analytic"], os.path.join(tmp, f"{level}.exr"), os.path.join(tmp, "s.json"),
+                               simd=level)
+                assert stats["info"]["simd"] == level, stats["info"]
+                if level not in best or stats["time_ms"]["intervals"] < best[level]["time_ms"]["intervals"]:
+                    best[level] = stats
+        apart = max((psnr(args.streak, os.path.join(tmp, "scalar.exr"), os.path.join(tmp, f"{level}.exr")) for level in levels[1:]),
+                    key=lambda v: float(v.split()[0]) if v.split()[0] != "inf" else 1e9)
+        cells = [f"{best[l]['time_ms']['intervals']:.0f}" for l in levels] + [f"{best[l]['time_ms']['render']:.0f}" for l in levels]
+        print(f"| {case} | " + " | ".join(cells) + f" | {apart} |", flush=True)
+    print()
+
+
+def dense(args, tmp):
+    case, case_args = DENSE
+    print(f"### {case}: wall s, peak MiB, phases ms (one run each, alternating)\n")
+    binaries = [("this build", args.streak)] + ([("baseline", args.baseline)] if args.baseline else [])
+    print("| method | build | wall | peak | segments per triangle | setup | intervals | resolve | shade | edge quadratics solved |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for method in ("analytic", "motion-path"):
+        for label, binary in binaries:
+            start = time.monotonic()
+            stats, peak = run(binary, case_args, ["-m", method], os.path.join(tmp, f"{label}.exr"), os.path.join(tmp, "s.json"))
+            wall = time.monotonic() - start
+            t, c = stats["time_ms"], stats["counters"]
+            solved = sum(c.get(k, 0) for k in ("roots_constant", "roots_linear", "roots_none", "roots_double", "roots_two"))
+            intervals = t.get("intervals", t.get("build intervals", 0) + t.get("rasterize", 0))
+            print(f"| {method} | {label} | {wall:.1f} | {peak:.0f} | {c.get('segments_per_triangle', 0):.0f} | {t.get('setup', t.get('generate', 0)):.0f} | "
+                  f"{intervals:.0f} | {t.get('resolve', 0):.0f} | {t.get('shade', 0):.0f} | {f'{solved / 1e6:.0f} M' if solved else '-'} |", flush=True)
+        if args.baseline:
+            print(f"| {method} | images apart | {psnr(args.streak, os.path.join(tmp, 'this build.exr'), os.path.join(tmp, 'baseline.exr'))} | | | | | | | |")
+    print()
+
+
 def threads(args, tmp):
     print("### Thread scaling (render ms, least of the repeats)\n")
     print("| scene | method | 1 thread | 2 threads | scaling |")
@@ -203,7 +265,8 @@ def main():
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "static": static, "threads": threads, "memory": memory, "resolution": resolution}
+    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "threads": threads, "memory": memory,
+                "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):
             sections[name](args, tmp)

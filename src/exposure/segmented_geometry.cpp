@@ -15,7 +15,8 @@ namespace streak::exposure {
 
 int SegmentedGeometry::segmentCount(const Scene& scene, int curveSegments) {
     int maxKeys = 2;
-    bool isCurved = !scene.camera.isStatic();
+    // A moving camera that does not turn keeps linear motion linear (Camera::isTurning).
+    bool isCurved = scene.camera.isTurning();
     for (const Mesh& mesh : scene.meshes) {
         maxKeys = std::max(maxKeys, mesh.numKeys);
         isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);

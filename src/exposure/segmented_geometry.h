@@ -34,9 +34,9 @@ struct TriangleSegment {
 
 // SegmentedGeometry is a scene's triangles cut into linear segments of the shutter, the form
 // every exact-time method (motion paths, analytic edge equations) works on. Linear keys under a
-// static camera move linearly in clip space, so one segment per key segment is exact. Curved
-// screen motion (Bezier keys, a moving camera) is followed by curveSegments linear pieces per
-// key segment. Segments are triangle-major: segment s of triangle i is at i * numSegments + s.
+// camera that does not turn (still, or moving without turning) move linearly in clip space, so
+// one segment per key segment is exact. Curved screen motion (Bezier keys, a turning camera) is
+// followed by curveSegments linear pieces per key segment. Segments are triangle-major: segment s of triangle i is at i * numSegments + s.
 class SegmentedGeometry {
 public:
     SegmentedGeometry(const Scene& scene, float aspect, int curveSegments);

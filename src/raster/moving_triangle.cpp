@@ -71,6 +71,19 @@ bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const 
     return false;
 }
 
+bool MovingTriangle::staysOutside(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, int orientation) const {
+    if (orientation == 0) return false;
+    const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
+    for (int e = 0; e < 3; ++e) {
+        // As above; for a still triangle a and b vanish and the maximum is c.
+        Quadratic q = edges[std::size_t(e)];
+        q.a *= orientation, q.b *= orientation, q.c *= orientation;
+        const double most = q.maxOnUnitInterval();
+        if (most < 0.0 && most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
+    }
+    return false;
+}
+
 bool MovingTriangle::stillRowRange(double y, int orientation, double& xLo, double& xHi) const {
     xLo = -std::numeric_limits<double>::infinity(), xHi = std::numeric_limits<double>::infinity();
     for (int e = 0; e < 3; ++e) {
@@ -86,27 +99,24 @@ bool MovingTriangle::stillRowRange(double y, int orientation, double& xLo, doubl
     return xLo <= xHi;
 }
 
-int MovingTriangle::stillSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
-                               RootCaseCounts* rootCases) const {
+int MovingTriangle::stillSpans(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, double zNear, bool checkNearPlane,
+                               std::array<double, 8>& bounds, RootCaseCounts* rootCases) const {
     // What solvedSpans computes when no corner moves: three constant quadratics (no roots, one
     // piece [0, 1]), their values and edge vectors at u = 1/2 the constant terms themselves.
     if (rootCases) rootCases->constant += 3;
-    const glm::dvec3 p(ndc, 1.0);
-    bool inside = isInsideByEdges(m_c, ndc, {glm::dot(m_c[0], p), glm::dot(m_c[1], p), glm::dot(m_c[2], p)});
+    bool inside = isInsideByEdges(m_c, ndc, {edges[0].c, edges[1].c, edges[2].c});
     if (inside && checkNearPlane) inside = sample(0.5, ndc).viewDepth >= zNear;
     if (!inside) return 0;
     bounds[0] = 0.0, bounds[1] = 1.0;
     return 2;
 }
 
-int MovingTriangle::solvedSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
-                                RootCaseCounts* rootCases) const {
+int MovingTriangle::solvedSpans(const std::array<Quadratic, 3>& q, const glm::dvec2& ndc, double zNear, bool checkNearPlane,
+                                std::array<double, 8>& bounds, RootCaseCounts* rootCases) const {
     std::array<double, 8> breaks;
     int n = 0;
     breaks[n++] = 0.0;
-    std::array<Quadratic, 3> q;
     for (int e = 0; e < 3; ++e) {
-        q[e] = edgeFunction(e, ndc);
         double roots[2];
         const int m = solveQuadratic(q[e], roots, rootCases);
         for (int i = 0; i < m; ++i)
@@ -116,13 +126,21 @@ int MovingTriangle::solvedSpans(const glm::dvec2& ndc, double zNear, bool checkN
     // At most 8 breaks: insertion sort.
     for (int i = 1; i < n; ++i)
         for (int j = i; j > 0 && breaks[j] < breaks[j - 1]; --j) std::swap(breaks[j], breaks[j - 1]);
+    // An edge's on-edge tolerance at any u is at most kOnEdgeTolerance times its term bound's
+    // scale (|edgeVector(e, u)| <= |a| + |b| + |c| componentwise); twice that leaves room for
+    // rounding. Two edges beyond it with opposite signs put the sample outside, as
+    // isInsideByEdges would find, without building the edge vectors at u.
+    const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
+    std::array<double, 3> clear;
+    for (int e = 0; e < 3; ++e) clear[std::size_t(e)] = 2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size);
     int count = 0;
     bool wasInside = false;
     for (int i = 0; i + 1 < n; ++i) {
         if (!(breaks[i + 1] > breaks[i])) continue;
         const double u = 0.5 * (breaks[i] + breaks[i + 1]);
         const double e0 = q[0](u), e1 = q[1](u), e2 = q[2](u);
-        bool inside = isInsideAt(u, ndc, {e0, e1, e2});
+        const bool isClearlyOutside = (e0 > clear[0] || e1 > clear[1] || e2 > clear[2]) && (e0 < -clear[0] || e1 < -clear[1] || e2 < -clear[2]);
+        bool inside = !isClearlyOutside && isInsideAt(u, ndc, {e0, e1, e2});
         if (inside && checkNearPlane) inside = sample(u, ndc).viewDepth >= zNear;
         if (inside != wasInside) bounds[count++] = breaks[i];
         wasInside = inside;

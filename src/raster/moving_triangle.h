@@ -26,11 +26,20 @@ public:
         const glm::dvec3 p(ndc, 1.0);
         return {glm::dot(m_a[e], p), glm::dot(m_b[e], p), glm::dot(m_c[e], p)};
     }
+    std::array<Quadratic, 3> edgeFunctions(const glm::dvec2& ndc) const { return {edgeFunction(0, ndc), edgeFunction(1, ndc), edgeFunction(2, ndc)}; }
+    // The vectors the edge quadratics are made of, and their term bounds (|a| + |b| + |c|):
+    // what a batch kernel (EdgeBatch) evaluates at many samples at once.
+    struct EdgeTerms {
+        const std::array<glm::dvec3, 3>&a, &b, &c, &bound;
+    };
+    EdgeTerms edgeTerms() const { return {m_a, m_b, m_c, m_termBound}; }
     // True when the triangle keeps the orientation `orientation` (+1: counter-clockwise, -1)
     // over u in [0, 1] and ndc stays outside one of its edges throughout, by more than the
     // inside test's on-edge tolerance: insideSpans would find no span there. It costs a third
     // of insideSpans, so methods ask it first where most samples of a box are empty.
     bool staysOutside(const glm::dvec2& ndc, int orientation) const;
+    // The same from edgeFunctions(ndc), found already.
+    bool staysOutside(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, int orientation) const;
     // For a still triangle of orientation +1 or -1: the NDC x range [xLo, xHi] of the sample
     // row at height y outside which staysOutside(ndc, orientation) holds at every |ndc.x| <= 1
     // (each edge, a line, bounds x on one side; its on-edge tolerance is taken at |x| = 1, so the
@@ -60,12 +69,21 @@ public:
     // returns how many values it wrote (even, at most 8).
     int insideSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
                     RootCaseCounts* rootCases = nullptr) const {
-        return m_isStill ? stillSpans(ndc, zNear, checkNearPlane, bounds, rootCases) : solvedSpans(ndc, zNear, checkNearPlane, bounds, rootCases);
+        return insideSpans(edgeFunctions(ndc), ndc, zNear, checkNearPlane, bounds, rootCases);
+    }
+    // The same from the edge functions at ndc, edgeFunctions(ndc), found already (by a batch
+    // that also asked staysOutside): the same spans, without evaluating them again.
+    int insideSpans(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, double zNear, bool checkNearPlane,
+                    std::array<double, 8>& bounds, RootCaseCounts* rootCases = nullptr) const {
+        return m_isStill ? stillSpans(edges, ndc, zNear, checkNearPlane, bounds, rootCases)
+                         : solvedSpans(edges, ndc, zNear, checkNearPlane, bounds, rootCases);
     }
     // insideSpans by solving the edge equations, whether or not the triangle moves: the general
     // path, which a still triangle's shortcut must equal (tested bit for bit).
     int solvedSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
-                    RootCaseCounts* rootCases = nullptr) const;
+                    RootCaseCounts* rootCases = nullptr) const {
+        return solvedSpans(edgeFunctions(ndc), ndc, zNear, checkNearPlane, bounds, rootCases);
+    }
 
     // No corner moves over the segment: the edge functions are constants, and the sample is
     // inside for all of [0, 1] or none of it. insideSpans and staysOutside then take a plain
@@ -77,7 +95,10 @@ public:
     bool isFrontFacing(double u) const { return glm::dot(corner(0, u), edgeVector(1, u)) > 0.0; }
 
 private:
-    int stillSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds, RootCaseCounts* rootCases) const;
+    int stillSpans(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                   RootCaseCounts* rootCases) const;
+    int solvedSpans(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                    RootCaseCounts* rootCases) const;
     bool isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const;
     static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
     glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }

@@ -20,7 +20,7 @@ double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
 
 }  // namespace
 
-bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
+bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double extraMargin) {
     m_count = 0;
     std::array<glm::dvec2, 6> points;
     double wProduct = 1.0;
@@ -63,7 +63,7 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
     // The on-edge tolerance's reach past a corner (see the header), and a little for rounding.
     const double reach = 4.0 * kOnEdgeTolerance;
     if (!(sine * kMaxMargin > reach)) return false;
-    m_margin = reach / sine + 1e-12;
+    m_margin = reach / sine + 1e-12 + extraMargin;
 
     const ConvexHull hull = convexHull(points);
     m_count = hull.count;

@@ -29,8 +29,9 @@ public:
     // Builds the hull of the segment (corners open -> close). Returns false, leaving no hull,
     // when a corner is not in front of the eye at an end, the orientation cubic's Bernstein
     // coefficients do not share a sign (it may vanish: the triangle may turn over or degenerate)
-    // or the margin would exceed kMaxMargin.
-    bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
+    // or the margin would exceed kMaxMargin. extraMargin (NDC) widens it further: by how far
+    // the given corners may be from the true ones (SweptPieces rounds a piece's ends to float).
+    bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double extraMargin = 0.0);
 
     // The NDC x range [xLo, xHi] of the widened hull on the sample row at height y. Returns
     // false when the row misses it.

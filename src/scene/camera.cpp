@@ -19,6 +19,14 @@ bool Camera::isStatic() const {
     return open.position == close.position && open.worldFromCamera == close.worldFromCamera;
 }
 
+bool Camera::isTurning() const {
+    const glm::mat3 a = glm::mat3_cast(open.worldFromCamera), b = glm::mat3_cast(close.worldFromCamera);
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (!(std::abs(a[c][r] - b[c][r]) <= kTurnTolerance)) return true;
+    return false;
+}
+
 CameraPose Camera::poseAt(float t) const {
     if (isStatic()) return open;
     CameraPose pose;

@@ -26,6 +26,13 @@ struct Camera {
     float zNear = 0.05f;            ///< world units
 
     bool isStatic() const;
+    // The orientation changes over the shutter: its axes move by more than kTurnTolerance. A
+    // camera that only moves (without turning; its projection is fixed) keeps clip-space motion
+    // linear: clipFromView * viewFromWorld(t) * x is R (x - c(t)) projected, affine in t for a
+    // point x moving linearly, so a screen path needs no more linear pieces than the scene's own
+    // keys. (Two look-at poses with one view direction can differ in their last float bits.)
+    static constexpr float kTurnTolerance = 1e-6f;  ///< radians, about: below float precision
+    bool isTurning() const;
     CameraPose poseAt(float t) const;
     glm::vec3 positionAt(float t) const;
     glm::mat4 viewFromWorld(float t) const;

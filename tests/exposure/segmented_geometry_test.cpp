@@ -2,6 +2,7 @@
 #include "support/test_scenes.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 namespace streak::exposure {
@@ -17,8 +18,8 @@ void expectNear(const glm::vec3& a, const glm::vec3& b, const char* what) {
 }  // namespace
 
 TEST(SegmentedGeometry, CornersAreEachMeshsVerticesAtTheSegmentEnds) {
-    // Two quads moving linearly in world space under a moving camera, so each triangle's motion
-    // is cut into curveSegments = 4 segments. Segment s of a triangle spans [s/4, (s+1)/4]; its
+    // Two quads moving linearly in world space under a moving and turning camera, so each
+    // triangle's motion is cut into curveSegments = 4 segments. Segment s of a triangle spans [s/4, (s+1)/4]; its
     // world corners must be that triangle's own vertices at those times (the closed form
     // open + t (close - open)), and its normals the mesh's normals there, also for the second
     // mesh, whose vertices come after the first's in the flat geometry.
@@ -35,6 +36,7 @@ TEST(SegmentedGeometry, CornersAreEachMeshsVerticesAtTheSegmentEnds) {
     scene.meshes[1].normals = std::vector<glm::vec3>(4, glm::vec3(0, 0, 1));
     scene.meshes[1].normals.resize(8, glm::vec3(1, 0, 0));
     scene.camera.close.position = glm::vec3(0.5f, 0.0f, 0.0f);
+    scene.camera.close.worldFromCamera = glm::angleAxis(0.1f, glm::vec3(0.0f, 1.0f, 0.0f));
     validateScene(scene);
 
     const SegmentedGeometry geometry(scene, 4.0f / 3.0f, 4);
@@ -66,6 +68,42 @@ TEST(SegmentedGeometry, CornersAreEachMeshsVerticesAtTheSegmentEnds) {
             }
         }
     }
+}
+
+// A camera that moves without turning (a truck and a dolly at once) keeps linear motion linear
+// in clip space, so each key segment stays one segment: the clip corners of a moving quad at
+// any time are the segment ends' mix, to float rounding. A turning camera takes curveSegments.
+TEST(SegmentedGeometry, ACameraMovingWithoutTurningKeepsOneSegmentPerKey) {
+    Scene scene = test::emptyScene();
+    const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f));
+    const std::array<glm::vec3, 4> open{glm::vec3(-1, 1, -4), glm::vec3(-1, -1, -5), glm::vec3(1, -1, -4), glm::vec3(1, 1, -3)};
+    std::array<glm::vec3, 4> close = open;
+    for (glm::vec3& p : close) p += glm::vec3(0.7f, -0.2f, 0.5f);
+    test::addMovingQuad(scene, m, open, close);
+    scene.camera.open.position = glm::vec3(0.0f, 0.0f, 0.0f);
+    scene.camera.close.position = glm::vec3(0.6f, 0.3f, -0.8f);
+    validateScene(scene);
+    ASSERT_FALSE(scene.camera.isTurning());
+    const float aspect = 4.0f / 3.0f;
+    const SegmentedGeometry geometry(scene, aspect, 4);
+    ASSERT_EQ(geometry.numSegments(), 1);
+    const Mesh& mesh = scene.meshes[0];
+    for (std::uint32_t tri = 0; tri < 2; ++tri) {
+        const TriangleSegment& segment = geometry.segment(tri, 0);
+        const glm::uvec3 v = mesh.triangles[tri];
+        for (const float t : {0.2f, 0.5f, 0.9f}) {
+            for (int i = 0; i < 3; ++i) {
+                const glm::vec3 world = glm::mix(mesh.positions[v[i]], mesh.positions[4 + v[i]], t);
+                const glm::vec4 exact = scene.camera.clipFromWorld(t, aspect) * glm::vec4(world, 1.0f);
+                const glm::vec4 mixed = glm::mix(segment.clip0[i], segment.clip1[i], t);
+                for (int j = 0; j < 4; ++j) EXPECT_NEAR(mixed[j], exact[j], 2e-5f) << "corner " << i << " at t = " << t;
+            }
+        }
+    }
+    // The same camera turning a little: the projection is no longer linear in t.
+    scene.camera.close.worldFromCamera = glm::angleAxis(0.05f, glm::vec3(0.0f, 1.0f, 0.0f));
+    ASSERT_TRUE(scene.camera.isTurning());
+    EXPECT_EQ(SegmentedGeometry::segmentCount(scene, 4), 4);
 }
 
 }  // namespace streak::exposure

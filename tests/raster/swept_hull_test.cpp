@@ -1,6 +1,7 @@
 #include "raster/swept_hull.h"
 
 #include "raster/moving_triangle.h"
+#include "support/swept_points.h"
 #include "util/random.h"
 
 #include <glm/common.hpp>
@@ -12,19 +13,7 @@
 
 namespace streak::raster {
 
-namespace {
-
-// The NDC corners of a segment at time u (clip space is linear in u).
-std::array<glm::dvec2, 3> poseAt(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double u) {
-    std::array<glm::dvec2, 3> p;
-    for (int i = 0; i < 3; ++i) {
-        const glm::dvec4 c = glm::mix(glm::dvec4(open[i]), glm::dvec4(close[i]), u);
-        p[i] = glm::dvec2(c.x, c.y) / c.w;
-    }
-    return p;
-}
-
-}  // namespace
+using test::poseAt;
 
 // A small triangle translating diagonally sweeps a thin band: the Minkowski sum of the triangle
 // (legs 0.01) and its path from (-0.5, -0.5) to (0.5, 0.5). At height y = 0 its x range is
@@ -92,18 +81,9 @@ TEST(SweptHull, HoldsEverySampleTheTriangleCovers) {
         }
         const MovingTriangle moving(open, close);
         for (int k = 0; k < 200; ++k) {
-            glm::dvec2 p(rng.uniform(-1, 1), rng.uniform(-1, 1));
-            if (k % 2 == 1) {  // on an edge at some time, or near it
-                const std::array<glm::dvec2, 3> pose = poseAt(open, close, rng.uniform(0, 1));
-                const int e = k % 3;
-                p = pose[e] + double(rng.uniform(0, 1)) * (pose[(e + 1) % 3] - pose[e]);
-                if (k % 4 == 3) p += glm::dvec2(rng.uniform(-1, 1), rng.uniform(-1, 1)) * 1e-6;
-                if (k % 10 == 5) {  // beyond a corner, along its edge: where the tolerance reaches
-                    const glm::dvec2 out = pose[e] - pose[(e + 1) % 3];
-                    p = pose[e] + out * (1e-6 * double(rng.uniform(0, 4)) / glm::length(out));
-                }
-                ++onEdge;
-            }
+            bool isOnEdge = false;
+            const glm::dvec2 p = test::sweptTestPoint(rng, open, close, k, isOnEdge);
+            onEdge += isOnEdge;
             if (std::abs(p.x) > 1.0 || std::abs(p.y) > 1.0) continue;
             std::array<double, 8> bounds;
             if (moving.insideSpans(p, 0.0, false, bounds) == 0) continue;

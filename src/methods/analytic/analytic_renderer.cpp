@@ -6,10 +6,13 @@
 #include "exposure/segmented_geometry.h"
 #include "exposure/triangle_surface_point.h"
 #include "exposure/exposure_interval.h"
+#include "raster/edge_batch.h"
 #include "raster/moving_triangle.h"
 #include "raster/swept_hull.h"
+#include "raster/swept_pieces.h"
 #include "raster/tile_grid.h"
 #include "util/error.h"
+#include "util/simd.h"
 
 #include <tbb/enumerable_thread_specific.h>
 
@@ -49,8 +52,10 @@ struct Counters {
     exposure::SampleResolveCounters resolve;
 };
 
-// Its cache: the tile's segments' edge equations.
-using TileScratch = exposure::ExactTileScratch<exposure::MovingTriangleCache, Counters>;
+// Its cache: the tile's segments' edge equations; and the box loop's batch of them.
+struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, Counters> {
+    raster::EdgeBatch batch;
+};
 
 class AnalyticRenderer final : public Renderer {
 public:
@@ -58,7 +63,8 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
-        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}};
+        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {},
+                    simd::activeLevel()};
         {
             PhaseTimer timer(context.stats, "setup");
             frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
@@ -85,6 +91,7 @@ public:
         const double numPixels = double(settings.width) * settings.height, numSamples = numPixels * frame.pattern.count();
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.resolve.maxIntervals,
                                      m_options.resolve.shading);
+        stats.setInfo("simd", simd::levelName(frame.simd));
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
@@ -119,6 +126,7 @@ private:
         std::optional<exposure::SegmentedGeometry> segmented;
         exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
+        simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
 
         void computeBounds() { bounds = segmented->screenBounds(viewport); }
 
@@ -191,33 +199,43 @@ private:
             // Depth on the triangle is a convex combination of its corners' depths, so only a
             // segment reaching nearer than the near plane needs the depth check.
             const bool checkNearPlane = !(segment.isInFront() && segment.nearness <= 1.0f / scene.camera.zNear);
-            // One sample of the segment's box: its exact spans, as records.
-            auto visit = [&](int px, int py, int s) __attribute__((always_inline)) {
-                const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                const glm::dvec2 ndc = scratch.sampleNdc[sample];
-                if (frame.options.tileCull && moving.staysOutside(ndc, segment.orientation)) {
-                    ++counters.samplesCulled;
-                    return;
-                }
-                std::array<double, 8> b;
-                const int n = moving.insideSpans(ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
-                for (int k = 0; k + 1 < n; k += 2) {
-                    // (A still triangle is the same at both ends.)
-                    const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
-                    const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
-                    // The triangle cannot turn over inside a span (its edges would have to
-                    // pass the sample), so its facing at mid-span is its facing throughout.
-                    if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
-                        ++counters.culledBackFacing;
-                        continue;
+            // A run of the box's samples (`count` of them from `first`, `stride` apart): their
+            // edge quadratics and staysOutside answers in batches (EdgeBatch, SIMD), then the
+            // exact spans of the samples not culled, as records, in the run's order.
+            const int cullOrientation = frame.options.tileCull ? segment.orientation : 0;
+            auto visitRun = [&](std::uint32_t first, std::ptrdiff_t stride, int count) __attribute__((always_inline)) {
+                for (int done = 0; done < count; done += raster::EdgeBatch::kCapacity) {
+                    const int n = std::min(count - done, raster::EdgeBatch::kCapacity);
+                    const auto batchFirst = std::uint32_t(first + done * stride);
+                    raster::evaluateEdgeBatch(moving, cullOrientation, &scratch.sampleNdc[batchFirst], stride, n, scratch.batch, frame.simd);
+                    for (int i = 0; i < n; ++i) {
+                        if (scratch.batch.staysOutside[std::size_t(i)]) {
+                            ++counters.samplesCulled;
+                            continue;
+                        }
+                        const auto sample = std::uint32_t(batchFirst + i * stride);
+                        const glm::dvec2 ndc = scratch.sampleNdc[sample];
+                        std::array<double, 8> b;
+                        const int m = moving.insideSpans(scratch.batch.edges[std::size_t(i)], ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
+                        for (int k = 0; k + 1 < m; k += 2) {
+                            // (A still triangle is the same at both ends.)
+                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
+                            const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
+                            // The triangle cannot turn over inside a span (its edges would have to
+                            // pass the sample), so its facing at mid-span is its facing throughout.
+                            if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !moving.isFrontFacing(0.5 * (b[k] + b[k + 1])))) {
+                                ++counters.culledBackFacing;
+                                continue;
+                            }
+                            exposure::TileRecord r;
+                            r.sample = sample;
+                            const double dt = double(segment.t1) - double(segment.t0);
+                            r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
+                            r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
+                            r.interval.source = index;
+                            scratch.records.push_back(r);
+                        }
                     }
-                    exposure::TileRecord r;
-                    r.sample = sample;
-                    const double dt = double(segment.t1) - double(segment.t0);
-                    r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
-                    r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
-                    r.interval.source = index;
-                    scratch.records.push_back(r);
                 }
             };
             // A segment whose box is wide enough visits per sample row only the span that can
@@ -235,33 +253,36 @@ private:
             const int boxWidth = region.x1 - region.x0 + 1;
             bool isRowSpan = false;
             raster::SweptHull hull;
-            if (frame.options.tileCull && segment.orientation != 0) {
-                if (moving.isStill()) isRowSpan = boxWidth >= kRowSpanMinWidth;
-                else if (frame.options.hullCull && boxWidth >= kRowSpanMinWidth && region.y1 > region.y0 && hull.build(segment.clip0, segment.clip1)) {
+            raster::SweptPieces pieces;  ///< where the segment has no hull (it turns over)
+            bool isPieces = false;
+            if (frame.options.tileCull) {
+                if (moving.isStill()) isRowSpan = segment.orientation != 0 && boxWidth >= kRowSpanMinWidth;
+                else if (frame.options.hullCull && boxWidth >= kRowSpanMinWidth && region.y1 > region.y0 &&
+                         ((segment.orientation != 0 && hull.build(segment.clip0, segment.clip1)) || (isPieces = pieces.build(segment.clip0, segment.clip1)))) {
                     const double boxArea = double(box.x1 - box.x0 + 1) * double(box.y1 - box.y0 + 1) * (4.0 / (double(width) * double(height)));
-                    isRowSpan = hull.area() <= kHullShare * boxArea;
+                    isRowSpan = (isPieces ? pieces.area() : hull.area()) <= kHullShare * boxArea;
                 }
             }
             const double step = 2.0 / double(width);
             for (int py = region.y0; py <= region.y1; ++py) {
+                const auto rowFirst = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp);
                 if (!isRowSpan) {
-                    for (int px = region.x0; px <= region.x1; ++px)
-                        for (int s = 0; s < spp; ++s) visit(px, py, s);
+                    visitRun(rowFirst, 1, boxWidth * spp);
                     continue;
                 }
                 for (int s = 0; s < spp; ++s) {
-                    const glm::dvec2 first = scratch.sampleNdc[(std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp + s];
+                    const glm::dvec2 first = scratch.sampleNdc[rowFirst + std::uint32_t(s)];
                     int pxFirst = region.x1 + 1, pxLast = region.x1;
                     double xLo, xHi;
                     const bool hasRange = moving.isStill() ? moving.stillRowRange(first.y, segment.orientation, xLo, xHi)
-                                                           : hull.rowRange(first.y, xLo, xHi);
+                                                           : isPieces ? pieces.rowRange(first.y, xLo, xHi) : hull.rowRange(first.y, xLo, xHi);
                     if (hasRange) {
                         const double limit = double(boxWidth) + 1.0;
                         pxFirst = std::max(region.x0, region.x0 + int(std::ceil(std::clamp((xLo - kRowMargin - first.x) / step, -limit, limit))));
                         pxLast = std::min(region.x1, region.x0 + int(std::floor(std::clamp((xHi + kRowMargin - first.x) / step, -limit, limit))));
                     }
                     counters.samplesCulled += boxWidth - std::max(0, pxLast - pxFirst + 1);
-                    for (int px = pxFirst; px <= pxLast; ++px) visit(px, py, s);
+                    if (pxLast >= pxFirst) visitRun(rowFirst + std::uint32_t((pxFirst - region.x0) * spp + s), spp, pxLast - pxFirst + 1);
                 }
             }
         }

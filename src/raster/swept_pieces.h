@@ -1,0 +1,43 @@
+#pragma once
+
+#include "raster/swept_hull.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <array>
+
+namespace streak::raster {
+
+// SweptPieces bounds where a moving triangle can cover a sample when SweptHull finds no hull
+// for its whole segment: the triangle turns over somewhere in it (or is too sharp). The segment
+// is cut into kPieces equal pieces of u. A piece whose triangle keeps its orientation gets its
+// own SweptHull; one where it turns over gets the NDC box of its six projected end corners
+// (the triangle lies in their convex hull over the piece, see SweptHull), widened by
+// kBoxMargin. A row's range is the x range of every piece it crosses. A long segment (a whole
+// shutter of camera travel) then visits the box of the instant it turns over, not its motion box.
+//
+// What a box leaves out, like the motion box itself, is the reach along the line a triangle
+// collapses onto while it turns over: insideSpans's on-edge tolerance accepts samples on that
+// line for about a millionth of the segment (an on-edge artefact, not coverage).
+class SweptPieces {
+public:
+    static constexpr int kPieces = 4;
+    static constexpr double kBoxMargin = 1e-4;  ///< NDC: 25 times the on-edge tolerance's reach
+
+    // Returns false, leaving no bound, when a corner is not in front of the eye at an end.
+    bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close);
+    // The union of the pieces' x ranges on the sample row at height y (as SweptHull::rowRange).
+    bool rowRange(double y, double& xLo, double& xHi) const;
+    double area() const { return m_area; }  ///< NDC: the pieces' hulls and boxes together
+    int numHulls() const;                   ///< pieces bounded by a hull, not a box
+
+private:
+    std::array<SweptHull, kPieces> m_hull;                ///< a piece's hull, where it has one
+    std::array<glm::dvec2, kPieces> m_boxLo{}, m_boxHi{};  ///< else its widened box
+    std::array<bool, kPieces> m_hasHull{};
+    double m_area = 0.0;
+    bool m_isBuilt = false;
+};
+
+}  // namespace streak::raster
