@@ -52,9 +52,12 @@ struct Counters {
     exposure::SampleResolveCounters resolve;
 };
 
-// Its cache: the tile's segments' edge equations; and the box loop's batch of them.
+// Its cache: the tile's segments' edge equations; and the box loop's batch of them and bounds
+// of a segment's samples (kept here so a segment that needs none does not construct them).
 struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, Counters> {
     raster::EdgeBatch batch;
+    raster::SweptHull hull;
+    raster::SweptPieces pieces;  // where a segment has no hull (it turns over)
 };
 
 class AnalyticRenderer final : public Renderer {
@@ -252,8 +255,8 @@ private:
             // small boxes made its interval phase 10% slower.)
             const int boxWidth = region.x1 - region.x0 + 1;
             bool isRowSpan = false;
-            raster::SweptHull hull;
-            raster::SweptPieces pieces;  ///< where the segment has no hull (it turns over)
+            raster::SweptHull& hull = scratch.hull;
+            raster::SweptPieces& pieces = scratch.pieces;
             bool isPieces = false;
             if (frame.options.tileCull) {
                 if (moving.isStill()) isRowSpan = segment.orientation != 0 && boxWidth >= kRowSpanMinWidth;
