@@ -19,6 +19,10 @@ void evaluateScalar(const MovingTriangle& moving, int orientation, const glm::dv
         const glm::dvec2& p = ndc[i * stride];
         batch.edges[std::size_t(i)] = moving.edgeFunctions(p);
         batch.staysOutside[std::size_t(i)] = moving.staysOutside(batch.edges[std::size_t(i)], p, orientation) ? 1 : 0;
+        if (moving.isStill()) {
+            const std::array<Quadratic, 3>& q = batch.edges[std::size_t(i)];
+            batch.isInsideStill[std::size_t(i)] = isInsideByEdges(moving.edgeTerms().c, p, {q[0].c, q[1].c, q[2].c}) ? 1 : 0;
+        }
     }
 }
 
@@ -57,6 +61,38 @@ void evaluateScalar(const MovingTriangle& moving, int orientation, const glm::dv
         outside |= (most < 0.0) & (most < -2.0 * kOnEdgeTolerance * size);
     }
     for (int i = 0; i < lanes; ++i) batch.staysOutside[std::size_t(first + i)] = outside[i] != 0 ? 1 : 0;
+    // (Not where every lane stays outside: the answer is not asked there, and a small still
+    // triangle's box is mostly such lanes.)
+    bool isAnyLeft = false;
+    for (int i = 0; i < lanes; ++i) isAnyLeft = isAnyLeft || outside[i] == 0;
+    if (!isStill || !isAnyLeft) return;
+    // isInsideByEdges of the constant edges in lanes, its sequential rule as masks: the first
+    // edge off its line sets the orientation (isSet: it is not zero; isPositive: > 0), a later
+    // one of the other sign fails, and with an orientation set every edge on its line must pass
+    // the top-left rule for it.
+    Mask4 isSet{}, isPositive{}, fails{};
+    std::array<Mask4, 3> isOn;
+    std::array<Double4, 3> value;
+    for (int e = 0; e < 3; ++e) {
+        const glm::dvec3& v = terms.c[e];
+        value[std::size_t(e)] = dotPoint(v, x, y);
+        const Double4 scale = (simd::abs(v.x * x) + simd::abs(v.y * y)) + std::abs(v.z);
+        isOn[std::size_t(e)] = simd::abs(value[std::size_t(e)]) <= kOnEdgeTolerance * scale;
+        const Mask4 off = ~isOn[std::size_t(e)];
+        const Mask4 positive = value[std::size_t(e)] > 0.0;
+        fails |= off & isSet & (isPositive ^ positive);
+        isPositive = (off & positive) | (~off & isPositive);
+        isSet = (off & (value[std::size_t(e)] != 0.0)) | (~off & isSet);
+    }
+    Mask4 topLeftFails{};
+    for (int e = 0; e < 3; ++e) {
+        const glm::dvec3& v = terms.c[e];
+        const Double4 sign = simd::select(isPositive, one, zero - 1.0);
+        const Double4 vx = v.x * sign, vy = v.y * sign;
+        topLeftFails |= isOn[std::size_t(e)] & ~((vx > 0.0) | ((vx == 0.0) & (vy < 0.0)));
+    }
+    const Mask4 inside = ~fails & (~isSet | ~topLeftFails);
+    for (int i = 0; i < lanes; ++i) batch.isInsideStill[std::size_t(first + i)] = inside[i] != 0 ? 1 : 0;
 }
 
 [[gnu::always_inline]] inline void evaluateVector(const MovingTriangle& moving, int orientation, const glm::dvec2* ndc, std::ptrdiff_t stride,

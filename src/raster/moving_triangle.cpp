@@ -103,8 +103,13 @@ int MovingTriangle::stillSpans(const std::array<Quadratic, 3>& edges, const glm:
                                std::array<double, 8>& bounds, RootCaseCounts* rootCases) const {
     // What solvedSpans computes when no corner moves: three constant quadratics (no roots, one
     // piece [0, 1]), their values and edge vectors at u = 1/2 the constant terms themselves.
+    return stillSpansOf(isInsideByEdges(m_c, ndc, {edges[0].c, edges[1].c, edges[2].c}), ndc, zNear, checkNearPlane, bounds, rootCases);
+}
+
+int MovingTriangle::stillSpansOf(bool isInsideByItsEdges, const glm::dvec2& ndc, double zNear, bool checkNearPlane,
+                                 std::array<double, 8>& bounds, RootCaseCounts* rootCases) const {
     if (rootCases) rootCases->constant += 3;
-    bool inside = isInsideByEdges(m_c, ndc, {edges[0].c, edges[1].c, edges[2].c});
+    bool inside = isInsideByItsEdges;
     if (inside && checkNearPlane) inside = sample(0.5, ndc).viewDepth >= zNear;
     if (!inside) return 0;
     bounds[0] = 0.0, bounds[1] = 1.0;

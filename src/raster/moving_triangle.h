@@ -78,6 +78,10 @@ public:
         return m_isStill ? stillSpans(edges, ndc, zNear, checkNearPlane, bounds, rootCases)
                          : solvedSpans(edges, ndc, zNear, checkNearPlane, bounds, rootCases);
     }
+    // A still triangle's spans when whether the sample is inside by its edges (isInsideByEdges
+    // of the constant edge vectors and values) is known already (EdgeBatch finds it in lanes).
+    int stillSpansOf(bool isInsideByItsEdges, const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,
+                     RootCaseCounts* rootCases = nullptr) const;
     // insideSpans by solving the edge equations, whether or not the triangle moves: the general
     // path, which a still triangle's shortcut must equal (tested bit for bit).
     int solvedSpans(const glm::dvec2& ndc, double zNear, bool checkNearPlane, std::array<double, 8>& bounds,

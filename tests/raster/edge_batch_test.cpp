@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 namespace streak::raster {
@@ -35,6 +36,20 @@ Case randomCase(Rng& rng, int i) {
         for (glm::vec4& v : c.open) v *= rng.uniform(0.5f, 3.0f);
         for (glm::vec4& v : c.close) v *= rng.uniform(0.5f, 3.0f);
     }
+    if (i % 50 == 7) {
+        // Still and axis-aligned (legs along x and y, either orientation), with samples exactly
+        // on its edges: where the top-left rule decides, on edges whose x or y term is zero.
+        c.open = {glm::vec4(-0.5f, -0.5f, 0, 1), glm::vec4(0.5f, -0.5f, 0, 1), glm::vec4(-0.5f, 0.5f, 0, 1)};
+        if (i % 100 == 57) std::swap(c.open[1], c.open[2]);
+        c.close = c.open;
+        for (int k = 0; k < 3 * EdgeBatch::kCapacity; ++k) {
+            const double along = -0.5 + double(int(rng.uniform(0, 64))) / 64.0;
+            const int edge = k % 4;
+            c.samples.push_back(edge == 0 ? glm::dvec2(along, -0.5) : edge == 1 ? glm::dvec2(-0.5, along) : edge == 2 ? glm::dvec2(along, -along)
+                                                                                                                 : glm::dvec2(along, 0.1));
+        }
+        return c;
+    }
     for (int k = 0; k < 3 * EdgeBatch::kCapacity; ++k) {
         glm::dvec2 p(rng.uniform(-1.5f, 1.5f), rng.uniform(-1.5f, 1.5f));
         if (k % 3 == 1) {
@@ -52,8 +67,8 @@ Case randomCase(Rng& rng, int i) {
 }  // namespace
 
 // Every level (the scalar twin, baseline SSE2, and AVX2 where this CPU has it) gives the edge
-// quadratics and staysOutside answers of MovingTriangle's per-sample code, bit for bit, and so
-// the same spans: 10,000 random moving triangles, each at 96 samples in runs of 32 (every
+// quadratics, staysOutside answers and (still triangles) inside tests of MovingTriangle's
+// per-sample code, bit for bit, and so the same spans: 10,000 random moving triangles, each at 96 samples in runs of 32 (every
 // sample, and every third as a box loop's row of one sample index takes them), in both
 // orientations and with culling off (orientation 0).
 TEST(EdgeBatch, EveryLevelEqualsThePerSampleCode) {
@@ -61,7 +76,7 @@ TEST(EdgeBatch, EveryLevelEqualsThePerSampleCode) {
     if (simd::isSupported(simd::Level::avx2)) levels.push_back(simd::Level::avx2);
     std::printf("edge batch levels tested: %zu (best: %s)\n", levels.size(), simd::levelName(simd::bestLevel()));
     Rng rng(2028);
-    std::int64_t compared = 0, culled = 0, withSpans = 0;
+    std::int64_t compared = 0, culled = 0, withSpans = 0, stillInside = 0, stillOnEdge = 0;
     EdgeBatch batch;
     for (int i = 0; i < 10000; ++i) {
         const Case c = randomCase(rng, i);
@@ -82,11 +97,19 @@ TEST(EdgeBatch, EveryLevelEqualsThePerSampleCode) {
                     }
                     const bool outside = moving.staysOutside(p, orientation);
                     ASSERT_EQ(batch.staysOutside[std::size_t(k)] != 0, outside) << simd::levelName(level) << " triangle " << i << " sample " << k;
+                    if (moving.isStill() && !outside) {  // (asked only where the sample is not culled)
+                        const Quadratic* q = expected.data();
+                        const bool inside = isInsideByEdges(moving.edgeTerms().c, p, {q[0].c, q[1].c, q[2].c});
+                        ASSERT_EQ(batch.isInsideStill[std::size_t(k)] != 0, inside) << simd::levelName(level) << " triangle " << i << " sample " << k;
+                        stillInside += inside, stillOnEdge += std::abs(q[0].c) < 1e-6 || std::abs(q[1].c) < 1e-6 || std::abs(q[2].c) < 1e-6;
+                    }
+                    ++compared, culled += outside;
+                    if (outside) continue;  // a box loop asks no spans there
                     std::array<double, 8> fromBatch, fromSample;
-                    const int n = moving.insideSpans(batch.edges[std::size_t(k)], p, 0.1, i % 2 == 0, fromBatch);
+                    const int n = insideSpansOf(moving, batch, k, p, 0.1, i % 2 == 0, fromBatch);
                     ASSERT_EQ(n, moving.insideSpans(p, 0.1, i % 2 == 0, fromSample));
                     for (int j = 0; j < n; ++j) ASSERT_EQ(fromBatch[std::size_t(j)], fromSample[std::size_t(j)]);
-                    ++compared, culled += outside, withSpans += n > 0;
+                    withSpans += n > 0;
                 }
             }
         }
@@ -94,6 +117,8 @@ TEST(EdgeBatch, EveryLevelEqualsThePerSampleCode) {
     EXPECT_GT(compared, 1000000);
     EXPECT_GT(culled, 100000);  // the cull is exercised, and so are spans
     EXPECT_GT(withSpans, 50000);
+    EXPECT_GT(stillInside, 5000);  // still triangles' inside test, on their edges too
+    EXPECT_GT(stillOnEdge, 5000);
 }
 
 }  // namespace streak::raster

@@ -219,7 +219,7 @@ private:
                         const auto sample = std::uint32_t(batchFirst + i * stride);
                         const glm::dvec2 ndc = scratch.sampleNdc[sample];
                         std::array<double, 8> b;
-                        const int m = moving.insideSpans(scratch.batch.edges[std::size_t(i)], ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
+                        const int m = raster::insideSpansOf(moving, scratch.batch, i, ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
                         for (int k = 0; k + 1 < m; k += 2) {
                             // (A still triangle is the same at both ends.)
                             const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
