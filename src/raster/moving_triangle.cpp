@@ -49,33 +49,12 @@ bool MovingTriangle::isInsideAt(double u, const glm::dvec2& ndc, const std::arra
     return isInsideByEdges({edgeVector(0, u), edgeVector(1, u), edgeVector(2, u)}, ndc, values);
 }
 
-bool MovingTriangle::staysOutside(const glm::dvec2& ndc, int orientation) const {
-    if (orientation == 0) return false;
-    const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
-    const glm::dvec3 p(ndc, 1.0);
-    for (int e = 0; e < 3; ++e) {
-        if (m_isStill) {
-            // The constant edge function is its own maximum (a and b vanish, so (a u + b) u + c
-            // is c at every u) and |c| its term bound.
-            const double most = glm::dot(m_c[e], p) * double(orientation);
-            if (most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
-            continue;
-        }
-        Quadratic q = edgeFunction(e, ndc);
-        q.a *= orientation, q.b *= orientation, q.c *= orientation;
-        const double most = q.maxOnUnitInterval();
-        if (!(most < 0.0)) continue;
-        // Twice the tolerance leaves room for rounding.
-        if (most < -2.0 * kOnEdgeTolerance * glm::dot(m_termBound[e], size)) return true;
-    }
-    return false;
-}
-
 bool MovingTriangle::staysOutside(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, int orientation) const {
     if (orientation == 0) return false;
     const glm::dvec3 size(std::abs(ndc.x), std::abs(ndc.y), 1.0);
     for (int e = 0; e < 3; ++e) {
-        // As above; for a still triangle a and b vanish and the maximum is c.
+        // The edge's largest value over the segment (a still triangle's a and b vanish, so it is
+        // c), past twice the on-edge tolerance at its term bound: twice leaves room for rounding.
         Quadratic q = edges[std::size_t(e)];
         q.a *= orientation, q.b *= orientation, q.c *= orientation;
         const double most = q.maxOnUnitInterval();

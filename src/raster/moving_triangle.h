@@ -37,7 +37,7 @@ public:
     // over u in [0, 1] and ndc stays outside one of its edges throughout, by more than the
     // inside test's on-edge tolerance: insideSpans would find no span there. It costs a third
     // of insideSpans, so methods ask it first where most samples of a box are empty.
-    bool staysOutside(const glm::dvec2& ndc, int orientation) const;
+    bool staysOutside(const glm::dvec2& ndc, int orientation) const { return staysOutside(edgeFunctions(ndc), ndc, orientation); }
     // The same from edgeFunctions(ndc), found already.
     bool staysOutside(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, int orientation) const;
     // For a still triangle of orientation +1 or -1: the NDC x range [xLo, xHi] of the sample

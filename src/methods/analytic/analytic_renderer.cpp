@@ -66,8 +66,7 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
-        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {},
-                    simd::activeLevel()};
+        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}};
         {
             PhaseTimer timer(context.stats, "setup");
             frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
@@ -259,11 +258,15 @@ private:
             raster::SweptPieces& pieces = scratch.pieces;
             bool isPieces = false;
             if (frame.options.tileCull) {
-                if (moving.isStill()) isRowSpan = segment.orientation != 0 && boxWidth >= kRowSpanMinWidth;
-                else if (frame.options.hullCull && boxWidth >= kRowSpanMinWidth && region.y1 > region.y0 &&
-                         ((segment.orientation != 0 && hull.build(segment.clip0, segment.clip1)) || (isPieces = pieces.build(segment.clip0, segment.clip1)))) {
+                if (moving.isStill()) {
+                    isRowSpan = segment.orientation != 0 && boxWidth >= kRowSpanMinWidth;
+                } else if (frame.options.hullCull && boxWidth >= kRowSpanMinWidth && region.y1 > region.y0) {
+                    // A hull for the whole segment where its triangle keeps one orientation, else
+                    // its time pieces'.
+                    const bool hasHull = segment.orientation != 0 && hull.build(segment.clip0, segment.clip1);
+                    isPieces = !hasHull && pieces.build(segment.clip0, segment.clip1);
                     const double boxArea = double(box.x1 - box.x0 + 1) * double(box.y1 - box.y0 + 1) * (4.0 / (double(width) * double(height)));
-                    isRowSpan = (isPieces ? pieces.area() : hull.area()) <= kHullShare * boxArea;
+                    isRowSpan = (hasHull || isPieces) && (isPieces ? pieces.area() : hull.area()) <= kHullShare * boxArea;
                 }
             }
             const double step = 2.0 / double(width);
