@@ -21,6 +21,11 @@ Section dense: issue 28's dense camera move (MetalRoughSpheresNoTextures, 1,040,
 the camera travelling a quarter of the frame without turning) at 240x135 --aa 2: wall, peak
 memory and phases of analytic and motion-path, with --baseline the build before beside them.
 
+Section budget: the dense camera move at 240x135 and 480x270 with motion-path and analytic, at
+the default --memory-budget and at each of --budgets (MB, default 1000): wall, peak memory, what
+was resident when the tiles began, the share per thread, the tiles halved and the pixels cut,
+and the image against the default budget's (inf: halving tiles is exact).
+
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
 Section memory: peak resident memory of each method (the process's maxrss) on the profile's
@@ -33,7 +38,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,threads,memory,resolution] [--repeats 3] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,budget,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--plot docs]
 """
 import argparse
 import json
@@ -196,6 +201,27 @@ def dense(args, tmp):
     print()
 
 
+def budget(args, tmp):
+    print("### The memory budget on the dense camera move (one run each)\n")
+    print("| case | method | --memory-budget MB | wall s | peak MiB | resident at the tiles MiB | share per thread MiB | tiles halved | pixels cut | image against the default's |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    sizes = [(f"{w}x{h}", [SPHERES, *DENSE_CAMERAS, "--width", str(w), "--height", str(h), "--aa", "2"]) for w, h in ((240, 135), (480, 270))]
+    for label, size_args in sizes:
+        for method in ("motion-path", "analytic"):
+            budgets = [None] + [int(b) for b in args.budgets.split(",")]
+            for mb in budgets:
+                out = os.path.join(tmp, f"budget-{mb}.exr")
+                extra = ["--memory-budget", str(mb)] if mb else []
+                start = time.monotonic()
+                stats, peak = run(args.streak, size_args, ["-m", method], out, os.path.join(tmp, "s.json"), extra)
+                wall = time.monotonic() - start
+                c = stats["counters"]
+                apart = psnr(args.streak, os.path.join(tmp, "budget-None.exr"), out) if mb else ""
+                print(f"| {label} | {method} | {c['memory_budget_mb']:.0f} | {wall:.1f} | {peak:.0f} | {c['memory_resident_mb']:.0f} | "
+                      f"{c['tile_share_mb']:.0f} | {c['memory_budget_splits']:.0f} | {c['memory_budget_pixels_cut']:.0f} | {apart} |", flush=True)
+    print()
+
+
 def threads(args, tmp):
     print("### Thread scaling (render ms, least of the repeats)\n")
     print("| scene | method | 1 thread | 2 threads | scaling |")
@@ -262,10 +288,11 @@ def main():
     parser.add_argument("--baseline", default="")
     parser.add_argument("--sections", default="profile,static,threads,memory,resolution")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--budgets", default="1000", help="section budget: the --memory-budget values (MB) beside the default")
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "threads": threads, "memory": memory,
+    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "budget": budget, "threads": threads, "memory": memory,
                 "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):

@@ -124,6 +124,7 @@ struct RenderArgs {
     std::optional<std::string> background;
     std::uint64_t seed = 0;
     int threads = 0;
+    int memoryBudget = sk::kDefaultMemoryBudgetMB;  ///< MB
     int repeat = 1;
     std::optional<std::string> sequence;  ///< --frames A:B[:STEP]
     std::string stats;
@@ -282,6 +283,7 @@ int runRender(const RenderArgs& args) {
     if (args.aa < 1 || args.aa > 16) throw Error("--aa must be in [1, 16], got " + std::to_string(args.aa));
     if (args.repeat < 1) throw Error("--repeat must be 1 or more, got " + std::to_string(args.repeat));
     if (args.threads < 0) throw Error("--threads must be 0 (all cores) or more, got " + std::to_string(args.threads));
+    if (args.memoryBudget < 1) throw Error("--memory-budget must be 1 MB or more, got " + std::to_string(args.memoryBudget));
     if (args.samples && *args.samples <= 0) throw Error("--samples must be positive, got " + std::to_string(*args.samples));
     if (args.shading != "phong" && args.shading != "unlit") throw Error("--shading must be phong or unlit, got '" + args.shading + "'");
     sk::RenderSettings settings;
@@ -293,6 +295,7 @@ int runRender(const RenderArgs& args) {
     settings.unlit = args.shading == "unlit";
     settings.seed = args.seed;
     settings.threads = args.threads;
+    settings.memoryBudgetMB = args.memoryBudget;
     // Method-specific flags become the method's options; a method rejects those it does not take.
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
@@ -493,6 +496,9 @@ int run(int argc, char** argv) {
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();
     render->add_option("--threads", renderArgs.threads, "worker threads (0: all cores)")->capture_default_str();
+    render->add_option("--memory-budget", renderArgs.memoryBudget,
+                       "MB the render should stay within: the exact methods split tiles whose lists would pass what it leaves above the scene "
+                       "(--stats: memory_budget_*)")->capture_default_str();
     render->add_option("--repeat", renderArgs.repeat, "render each frame this many times; times and counters are the last's (warm: GL programs built)")
         ->capture_default_str();
     render->add_option("--frames", renderArgs.sequence,

@@ -26,9 +26,16 @@ struct Method {
 };
 std::vector<Method> methods();
 
+// The memory a render should stay within by default (MB): a third of a 24 GB machine.
+inline constexpr int kDefaultMemoryBudgetMB = 8192;
+
 // How to render: the method by name and its options (as --option KEY=VALUE: samples,
 // max-intervals, ...), the image size, N x N anti-aliasing (n-rooks, or the regular grid),
-// Phong or unlit shading, the seed, and the worker threads (0: all cores).
+// Phong or unlit shading, the seed, the worker threads (0: all cores), and the memory budget.
+// The exact methods (motion-path, analytic, higher-order) keep their tile lists within what the
+// budget leaves above the scene, splitting tiles that would pass it; the stats count the splits
+// (memory_budget_splits) and, where a single pixel passed it, what was cut
+// (memory_budget_pixels_cut, memory_budget_dropped).
 struct RenderSettings {
     std::string method = "motion-path";
     std::map<std::string, std::string> options;
@@ -38,6 +45,7 @@ struct RenderSettings {
     bool unlit = false;
     std::uint64_t seed = 0;
     int threads = 0;
+    int memoryBudgetMB = kDefaultMemoryBudgetMB;
 };
 
 // The figures of a render, as the command line's --stats writes them: wall time per phase (ms,

@@ -16,6 +16,7 @@
 namespace streak::api {
 
 static_assert(kMaxImageSize == raster::kMaxImageSize, "the public size limit is the rasterizer's");
+static_assert(kDefaultMemoryBudgetMB == int(streak::kDefaultMemoryBudgetMB), "the public default budget is the methods'");
 
 namespace {
 
@@ -89,6 +90,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
                     "x" + std::to_string(settings.height));
     if (settings.aa < 1 || settings.aa > 16) throw Error("render: aa must be in [1, 16], got " + std::to_string(settings.aa));
     if (settings.threads < 0) throw Error("render: threads must be 0 (all cores) or more, got " + std::to_string(settings.threads));
+    if (settings.memoryBudgetMB < 1) throw Error("render: memoryBudgetMB must be 1 or more, got " + std::to_string(settings.memoryBudgetMB));
     OptionMap options;
     for (const auto& [key, value] : settings.options) options.set(key, value);
     m_impl->method = createRenderer(settings.method, options);
@@ -98,6 +100,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     s.isGridPattern = settings.sampleGrid;
     s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
     s.seed = settings.seed;
+    s.memoryBudgetMB = std::uint64_t(settings.memoryBudgetMB);
 }
 
 Renderer::~Renderer() = default;

@@ -3,6 +3,7 @@
 #include "exposure/exposure_interval.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_resolve.h"
+#include "exposure/tile_budget.h"
 #include "exposure/visible_pieces.h"
 #include "raster/sample_pattern.h"
 #include "raster/tile_grid.h"
@@ -23,17 +24,19 @@
 namespace streak::exposure {
 
 // The frame of the exact-time methods that work per tile: bins items by their pixel bounds
-// ("bin"), then runs renderTile(tile, scratch, image) on every tile in parallel with one Scratch
-// per thread ("tiles"); each tile owns its pixels. Returns the image, background where no tile
-// wrote; the per-thread scratches stay in `scratch` for the method to sum its counters.
+// ("bin"), measures what the memory budget leaves the tiles (budget.measure()), then runs
+// renderTile(tile, scratch, image) on every tile in parallel with one Scratch per thread
+// ("tiles"); each tile owns its pixels. Returns the image, background where no tile wrote; the
+// per-thread scratches stay in `scratch` for the method to sum its counters.
 template <class Scratch, class RenderTile>
 std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raster::PixelBounds> bounds, const glm::vec3& background,
-                                   int width, int height, RenderStats& stats, ProgressReporter* progress,
+                                   int width, int height, RenderStats& stats, ProgressReporter* progress, TileBudget& budget,
                                    tbb::enumerable_thread_specific<Scratch>& scratch, RenderTile&& renderTile) {
     {
         PhaseTimer timer(stats, "bin");
         grid.bin(bounds.size(), [&](std::size_t i) { return bounds[i]; });
     }
+    budget.measure();
     std::vector<glm::vec3> image(std::size_t(width) * std::size_t(height), background);
     {
         PhaseTimer timer(stats, "tiles");
@@ -103,11 +106,13 @@ struct ExactResolveOptions {
 // What one thread of an exact method keeps from tile to tile: the tile's interval records, then
 // grouped by sample, the buffers of the resolve and the pixel shading, the method's cache of
 // its triangles' equations (Cache) and its counters (Counters, with a SampleResolveCounters
-// `resolve` and the seconds spent finding intervals, `intervalSeconds`).
+// `resolve` and the seconds spent finding intervals, `intervalSeconds`; and the budget's).
 template <class Cache, class Counters>
 struct ExactTileScratch {
     std::vector<TileRecord> records, bySample;
     std::vector<std::uint32_t> runs;
+    std::vector<float> nearness;  ///< a cut pixel's keys (keepRecordsWithinShare)
+    TileBudgetCounters budget;
     std::vector<ExposureInterval> list;
     SampleResolveScratch resolve;
     PixelShading pixelShading;
@@ -116,6 +121,41 @@ struct ExactTileScratch {
     Cache cache;
     Counters counters;
 };
+
+// An exact method's tile: its cache emptied, then its pixels by renderRect(items, rect, isPixel)
+// (the tile's items, and the tile or a piece of it), in pieces while a piece's records would pass
+// the share (renderWithinShare). A piece given up was spent finding intervals, and is timed so.
+template <class Cache, class Counters, class RenderRect>
+void renderExactTile(const raster::TileGrid& grid, int tile, ExactTileScratch<Cache, Counters>& scratch, RenderRect&& renderRect) {
+    scratch.cache.clear();
+    renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
+        const auto start = std::chrono::steady_clock::now();
+        const bool fits = renderRect(grid.items(tile), rect, isPixel);
+        if (!fits) scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return fits;
+    });
+}
+
+// What a tile's interval record costs the thread's share: itself, and its copy grouped by sample.
+inline constexpr std::size_t kBytesPerTileRecord = 2 * sizeof(TileRecord);
+inline std::size_t maxTileRecords(const TileBudget& budget) { return budget.maxItems(kBytesPerTileRecord); }
+
+// Called after each triangle segment of a rectangle's interval search (numSamples in it): false
+// once scratch.records pass maxRecords, and the rectangle is to be halved (renderWithinShare). A
+// single pixel instead keeps each sample's nearest records, down to half its share (so the cut
+// is not repeated at every segment), and goes on.
+template <class Cache, class Counters>
+bool keepRecordsWithinShare(ExactTileScratch<Cache, Counters>& scratch, std::size_t maxRecords, bool isPixel, std::size_t numSamples) {
+    scratch.budget.see(scratch.records.size());
+    if (scratch.records.size() <= maxRecords) return true;
+    if (!isPixel) return false;
+    const std::size_t dropped = keepNearestPerSample(
+        scratch.records, numSamples, maxRecords / (2 * numSamples), scratch.runs, scratch.bySample, scratch.nearness,
+        [](std::span<TileRecord> run) { return run.size(); },
+        [](const TileRecord& r) { return -std::min(r.interval.depth0, r.interval.depth1); });
+    scratch.budget.dropped += std::int64_t(dropped);
+    return true;
+}
 
 // The NDC of every sample of the pixels in rect, in TileRecord::sample order (row by row, the
 // pattern's samples per pixel): computed once per tile, not once per segment that covers it.

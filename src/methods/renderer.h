@@ -11,6 +11,10 @@
 
 namespace streak {
 
+// The default memory budget: a third of a 24 GB machine, leaving the rest to the system and the
+// applications beside streak.
+inline constexpr std::uint64_t kDefaultMemoryBudgetMB = 8192;
+
 // Settings every method honours. Method-specific settings (sample counts, budgets) are options
 // the method parses itself at creation (see registry.h).
 struct RenderSettings {
@@ -20,6 +24,12 @@ struct RenderSettings {
     bool isGridPattern = false;                ///< the N x N grid of cell centres instead of n-rooks (raster::SamplePattern)
     ShadingMode shading = ShadingMode::Phong;
     std::uint64_t seed = 0;                    ///< for methods that sample randomly
+    // Memory: the process should hold at most memoryBudgetMB. The exact methods' tile lists take
+    // what the budget leaves when their tile pass starts, split over the threads, and split a
+    // tile that would pass it (exposure::TileBudget). tileShareBytes, when not 0, is one
+    // thread's share itself, whatever is resident (tests make a scene overflow a known share).
+    std::uint64_t memoryBudgetMB = kDefaultMemoryBudgetMB;
+    std::uint64_t tileShareBytes = 0;
 };
 
 // Where a render reports how it went.

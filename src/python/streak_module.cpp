@@ -161,9 +161,10 @@ PYBIND11_MODULE(streak, m) {
     m.def(
         "render",
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
-           const std::map<std::string, std::string>& options, bool stats) -> py::object {
+           const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
+            s.memoryBudgetMB = memoryBudgetMB;
             const sk::Scene sc = sceneOf(scene);
             sk::RenderResult result;
             {
@@ -175,7 +176,9 @@ PYBIND11_MODULE(streak, m) {
         },
         py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
         py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
-        "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict))");
+        py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB,
+        "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
+        "memory_budget_mb: what the exact methods' tile lists keep within");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));

@@ -95,6 +95,9 @@ TEST(Api, BadArraysRaiseOneClearError) {
     sk::RenderSettings unknown;
     unknown.method = "nosuch";
     EXPECT_THROW(sk::render(good, unknown), streak::Error);
+    sk::RenderSettings noMemory;
+    noMemory.memoryBudgetMB = 0;
+    EXPECT_THROW(sk::render(good, noMemory), streak::Error);
     EXPECT_THROW(sk::Scene::load("builtin:nosuch"), streak::Error);
 }
 

@@ -97,6 +97,29 @@ TEST(Cli, RenderWritesImageAndStats) {
     EXPECT_NEAR(linearToSrgb(exr.at(10, 10).x), linearToSrgb(image.at(10, 10).x), 1.0 / 255);
 }
 
+// --memory-budget reaches the exact methods: a budget the process already passes leaves the
+// tiles the floor of a share, which motion-path's 32 x 32 tiles of 64 samples pass, and the image
+// is the same (its tiles are only halved).
+TEST(Cli, MemoryBudgetReachesTheTilesAndKeepsTheImage) {
+    test::TempDir dir;
+    const std::string base = "render builtin:cubes?n=60 -m motion-path --aa 8 --width 96 --height 72 --threads 1 ";
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("free.exr") + " --stats " + dir.file("free.json")).exitCode, 0);
+    const RunResult r = runStreak(dir, base + "--memory-budget 1 -o " + dir.file("tight.exr") + " --stats " + dir.file("tight.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json free = nlohmann::json::parse(readFile(dir.file("free.json")))["counters"];
+    const nlohmann::json tight = nlohmann::json::parse(readFile(dir.file("tight.json")))["counters"];
+    EXPECT_EQ(free["memory_budget_mb"].get<double>(), 8192.0);
+    EXPECT_EQ(tight["memory_budget_mb"].get<double>(), 1.0);
+    EXPECT_GT(tight["memory_resident_mb"].get<double>(), 1.0);  // the process passes it already
+    EXPECT_EQ(tight["tile_share_mb"].get<double>(), 4.0);       // so the tiles get the floor
+    EXPECT_GT(free["tile_share_mb"].get<double>(), 1000.0);
+    EXPECT_EQ(free["memory_budget_splits"].get<double>(), 0.0);
+    EXPECT_GT(tight["memory_budget_splits"].get<double>(), 0.0);
+    EXPECT_EQ(tight["memory_budget_dropped"].get<double>(), 0.0);
+    const Image a = readImage(dir.file("free.exr")), b = readImage(dir.file("tight.exr"));
+    EXPECT_TRUE(std::equal(a.pixels().begin(), a.pixels().end(), b.pixels().begin(), b.pixels().end()));
+}
+
 // --repeat renders again with the same renderer: the same image, and the stats of the last
 // render alone (a warm-up render's counters are not added in).
 TEST(Cli, RepeatReportsTheLastRenderOnly) {
@@ -220,6 +243,7 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"option a method does not take", "render builtin:crossing -m motion-path --samples 4 -o " + out},
         {"gpu memory on a CPU method", "render builtin:crossing -m motion-path --gpu-memory 64 -o " + out},
         {"zero repeat", "render " + ok + "--repeat 0 -o " + out},
+        {"zero memory budget", "render " + ok + "--memory-budget 0 -o " + out},
         {"a sequence without %d", "render " + triangle + " --frames 0:2 -o " + out},
         {"a sequence of a built-in scene", "render " + ok + "--frames 0:2 -o " + dir.file("out_%d.png")},
         {"a backwards range", "render " + triangle + " --frames 3:1 -o " + dir.file("out_%d.png")},

@@ -44,6 +44,11 @@ class RenderTest(unittest.TestCase):
         expected = np.clip((14.0 - (np.arange(16) + 0.5)) / 12.0, 0.0, 1.0)
         np.testing.assert_allclose(image[:, :, 0], np.tile(expected, (4, 1)), atol=2e-4)
         self.assertEqual(stats["counters"]["triangles"], 2)
+        self.assertEqual(stats["counters"]["memory_budget_mb"], 8192)
+        # The memory budget reaches the method, and halving tiles leaves the image as it was.
+        tight, tight_stats = streak.render(scene, method="analytic", width=16, height=4, unlit=True, stats=True, memory_budget_mb=1)
+        self.assertEqual(tight_stats["counters"]["memory_budget_mb"], 1)
+        self.assertTrue(np.array_equal(tight, image))
         # Textured with a uniform grey: the same ramp times the grey (linear light).
         grey = np.full((2, 2, 4), 0.5, dtype=np.float32)
         uvs = np.array([[0, 0], [0, 1], [1, 1], [1, 0]], dtype=np.float32)

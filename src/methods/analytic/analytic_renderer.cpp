@@ -76,12 +76,19 @@ public:
         }
         raster::TileGrid grid(viewport, kTileSize);
         tbb::enumerable_thread_specific<TileScratch> scratch;
+        exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         const std::vector<glm::vec3> image = exposure::runTilePass(
             grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) { renderTile(frame, grid, tile, local, pixels); });
+            context.progress, budget, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) {
+                exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
+                    return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
+                });
+            });
 
         Counters total;
+        exposure::TileBudgetCounters budgetTotal;
         for (const TileScratch& s : scratch) {
+            budgetTotal.add(s.budget);
             const Counters& c = s.counters;
             total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests, total.tilesCulled += c.tilesCulled;
             total.samplesCulled += c.samplesCulled;
@@ -93,6 +100,7 @@ public:
         const double numPixels = double(settings.width) * settings.height, numSamples = numPixels * frame.pattern.count();
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.resolve.maxIntervals,
                                      m_options.resolve.shading);
+        budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setInfo("simd", simd::levelName(frame.simd));
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
@@ -165,9 +173,12 @@ private:
         return false;
     }
 
-    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+    // The pixels of rect, within a tile whose segments are `items` (exposure::renderExactTile);
+    // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
+    // them instead).
+    bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
+                    std::size_t maxRecords, TileScratch& scratch, std::vector<glm::vec3>& image) const {
         using Clock = std::chrono::steady_clock;
-        const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1;
         const int spp = frame.pattern.count();
         const Scene& scene = frame.scene;
@@ -179,11 +190,12 @@ private:
         // Intervals: every sample in each segment's box solves the segment's edge equations.
         const auto start = Clock::now();
         scratch.records.clear();
-        scratch.cache.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
+        const std::size_t numSamples = scratch.sampleNdc.size();
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
-        for (const std::uint32_t index : grid.items(tile)) {
+        for (const std::uint32_t index : items) {
+            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
             const exposure::TriangleSegment& segment = segments[index];
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
@@ -292,6 +304,7 @@ private:
                 }
             }
         }
+        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
         // Per sample: resolve the intervals exactly and shade what shows.
         const exposure::ExactDepthOfSource exactDepth = [&](std::uint32_t source, float t, const glm::dvec2& ndc) {
             const exposure::TriangleSegment& s = segments[source];
@@ -304,6 +317,7 @@ private:
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             },
             frame.options.checkDepthOrder ? &exactDepth : nullptr);
+        return true;
     }
 
     Options m_options;

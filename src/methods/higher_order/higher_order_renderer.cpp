@@ -85,12 +85,19 @@ public:
         }
         raster::TileGrid grid(viewport, kTileSize);
         tbb::enumerable_thread_specific<TileScratch> scratch;
+        exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         const std::vector<glm::vec3> image = exposure::runTilePass(
             grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) { renderTile(frame, grid, tile, local, pixels); });
+            context.progress, budget, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) {
+                exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
+                    return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
+                });
+            });
 
         Counters total;
+        exposure::TileBudgetCounters budgetTotal;
         for (const TileScratch& s : scratch) {
+            budgetTotal.add(s.budget);
             const Counters& c = s.counters;
             total.coverageTests += c.coverageTests, total.coverageHits += c.coverageHits, total.culledBackFacing += c.culledBackFacing;
             total.depthSplits += c.depthSplits, total.pixelsSkipped += c.pixelsSkipped;
@@ -106,6 +113,7 @@ public:
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, double(settings.width) * settings.height,
                                      m_options.resolve.maxIntervals, m_options.resolve.shading);
+        budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setCounter("motion_order", frame.geometry->order());
         stats.setCounter("motion_fitted", frame.geometry->isFitted() ? 1.0 : 0.0);
         stats.setCounter("pieces_per_triangle", frame.geometry->numPieces());
@@ -244,9 +252,12 @@ private:
         return false;
     }
 
-    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+    // The pixels of rect, within a tile whose segments are `items` (exposure::renderExactTile);
+    // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
+    // them instead).
+    bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
+                    std::size_t maxRecords, TileScratch& scratch, std::vector<glm::vec3>& image) const {
         using Clock = std::chrono::steady_clock;
-        const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
         const exposure::CurvedGeometry& geometry = *frame.geometry;
@@ -257,9 +268,10 @@ private:
 
         const auto start = Clock::now();
         scratch.records.clear();
-        scratch.cache.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
-        for (const std::uint32_t index : grid.items(tile)) {
+        const std::size_t numSamples = scratch.sampleNdc.size();
+        for (const std::uint32_t index : items) {
+            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
@@ -289,12 +301,14 @@ private:
                         }
                 }
         }
+        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
         exposure::resolveExactTile(
             rect, frame.pattern, frame.scene, triangles, width, height, frame.options.resolve, start, scratch, image,
             [&](std::uint32_t source) { return segments[source].triangle; },
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             });
+        return true;
     }
 
     // Gribel et al. 2013's visibility accuracy: at seeded random (sample, time) pairs, whether the

@@ -2,6 +2,7 @@
 
 #include "exposure/pixel_shading.h"
 #include "exposure/segmented_geometry.h"
+#include "exposure/tile_budget.h"
 #include "exposure/triangle_surface_point.h"
 #include "exposure/visible_pieces.h"
 #include "methods/motion_path/interval.h"
@@ -87,12 +88,20 @@ struct TileScratch {
     std::vector<exposure::VisiblePiece> spans;  ///< one sample's visible opaque pieces
     exposure::PixelShading pixelShading;        ///< one pixel's, shaded together
     std::vector<float> events;
+    std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
     std::vector<glm::vec3> color;
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
     MotionPath path;
     raster::TriangleSetup setup;
     Counters counters;
+    exposure::TileBudgetCounters budget;
 };
+
+// What a fragment may cost a tile's lists of the thread's memory share: itself and its copy by
+// sample, the interval it may become (built, then sorted), its weight, its visible span and a
+// depth knot.
+constexpr std::size_t kBytesPerFragment = 2 * sizeof(Fragment) + 2 * sizeof(Interval) + sizeof(float) + sizeof(exposure::VisibleSpan) +
+                                          sizeof(motion_path::DepthKnot);
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -115,16 +124,21 @@ public:
         }
         std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
         tbb::enumerable_thread_specific<TileScratch> scratch;
+        exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
+        budget.measure();
         {
             PhaseTimer timer(context.stats, "tiles");
+            const std::size_t maxFragments = budget.maxItems(kBytesPerFragment);
             grid.forEachTile([&](int tile) {
-                renderTile(frame, grid, tile, scratch.local(), image);
+                renderTile(frame, grid, tile, maxFragments, scratch.local(), image);
             }, /*includeEmpty=*/true);
         }
         if (context.progress) context.progress->update(1.0);
 
         Counters total;
+        exposure::TileBudgetCounters budgetTotal;
         for (const TileScratch& s : scratch) {
+            budgetTotal.add(s.budget);
             const Counters& c = s.counters;
             total.fragments += c.fragments, total.fragmentOverflowSamples += c.fragmentOverflowSamples;
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
@@ -147,6 +161,7 @@ public:
 
         const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         RenderStats& stats = context.stats;
+        budget.record(stats, budgetTotal, kBytesPerFragment);
         stats.setCounter("segments_per_triangle", frame.segmented.numSegments());
         stats.setCounter("motion_paths", double(frame.paths.size()));
         stats.setCounter("path_faces_rasterized", double(total.pathFaces));
@@ -281,9 +296,41 @@ private:
         return frame.scene.shutter.rowWindow(rect.y0 + int(i / std::size_t(frame.pattern.count())) / tileWidth, frame.viewport.height);
     }
 
-    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+    // Keeps each sample's paths once, in path order (a path's faces overlap, so a sample can
+    // hold several of its fragments); returns how many remain at the front of `fragments`.
+    static std::size_t uniquePaths(std::span<Fragment> fragments) {
+        std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
+        return std::size_t(std::unique(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path == b.path; }) -
+                           fragments.begin());
+    }
+
+    // A tile, in halves while its fragments would pass maxFragments (exposure::renderWithinShare).
+    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, std::size_t maxFragments, TileScratch& scratch,
+                    std::vector<glm::vec3>& image) const {
+        scratch.movingTriangles.clear();
+        exposure::renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
+            return renderRect(frame, grid.items(tile), rect, isPixel, maxFragments, scratch, image);
+        });
+    }
+
+    // After each path rasterized into rect (numSamples in it): false once the fragments pass
+    // maxFragments. A single pixel instead keeps each sample's nearest paths, once each, down
+    // to half its share (so the cut is not repeated at every path), and goes on.
+    static bool keepFragmentsWithinShare(TileScratch& scratch, std::size_t maxFragments, bool isPixel, std::size_t numSamples) {
+        scratch.budget.see(scratch.fragments.size());
+        if (scratch.fragments.size() <= maxFragments) return true;
+        if (!isPixel) return false;
+        scratch.budget.dropped += std::int64_t(exposure::keepNearestPerSample(
+            scratch.fragments, numSamples, maxFragments / (2 * numSamples), scratch.fragmentRuns, scratch.bySample, scratch.nearness,
+            uniquePaths, [](const Fragment& f) { return f.nearness; }));
+        return true;
+    }
+
+    // The pixels of rect, within a tile whose paths are `items`; false, with the image left
+    // alone, once its fragments pass maxFragments (a single pixel cuts them instead).
+    bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
+                    std::size_t maxFragments, TileScratch& scratch, std::vector<glm::vec3>& image) const {
         using Clock = std::chrono::steady_clock;
-        const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
         const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
@@ -293,9 +340,12 @@ private:
         // Rasterize: every face of every path reaching the tile adds a fragment to each sample
         // it covers.
         auto start = Clock::now();
-        scratch.movingTriangles.clear();
         scratch.fragments.clear();
-        for (const std::uint32_t index : grid.items(tile)) {
+        for (const std::uint32_t index : items) {
+            if (!keepFragmentsWithinShare(scratch, maxFragments, isPixel, numSamples)) {
+                counters.rasterSeconds += secondsSince(start);
+                return false;
+            }
             const exposure::TriangleSegment& segment = frame.paths[index];
             motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
             counters.pathFaces += scratch.path.count;
@@ -313,6 +363,10 @@ private:
                     });
                 }
             }
+        }
+        if (!keepFragmentsWithinShare(scratch, maxFragments, isPixel, numSamples)) {
+            counters.rasterSeconds += secondsSince(start);
+            return false;
         }
         counters.fragments += std::int64_t(scratch.fragments.size());
         raster::groupBySample(std::span<const Fragment>(scratch.fragments), numSamples, scratch.fragmentRuns, scratch.bySample);
@@ -337,10 +391,7 @@ private:
         for (std::size_t i = 0; i < numSamples; ++i) {
             std::span<Fragment> fragments(scratch.bySample.data() + runs[i], runs[i + 1] - runs[i]);
             if (!fragments.empty()) {
-                std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
-                fragments = fragments.first(std::size_t(std::unique(fragments.begin(), fragments.end(),
-                                                                    [](const Fragment& a, const Fragment& b) { return a.path == b.path; }) -
-                                                        fragments.begin()));
+                fragments = fragments.first(uniquePaths(fragments));
                 if (int(fragments.size()) > options.maxFragments) {
                     // Over budget: keep the nearest paths.
                     ++counters.fragmentOverflowSamples;
@@ -489,6 +540,7 @@ private:
         for (int py = rect.y0; py <= rect.y1; ++py)
             for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * frame.viewport.width + px] = glm::vec3(0.0f);
         raster::addTileToImage(rect, spp, scratch.color, 1.0f, image, frame.viewport.width);
+        return true;
     }
 
     Options m_options;
