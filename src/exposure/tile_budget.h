@@ -17,11 +17,20 @@ namespace streak::exposure {
 // (intervals, fragments) those cuts dropped, and the most items a rectangle's list held.
 struct TileBudgetCounters {
     std::int64_t splits = 0, pixelsCut = 0, dropped = 0, peakItems = 0;
+    // Set by a piece that passed its share (refuse): how many times over the share its whole list
+    // would have come to, from how far it got. renderWithinShare cuts it into that many pieces.
+    double refusedOver = 0.0;
     void add(const TileBudgetCounters& o) {
         splits += o.splits, pixelsCut += o.pixelsCut, dropped += o.dropped, peakItems = std::max(peakItems, o.peakItems);
     }
     // Notes a list of n items where the method checks it against its share.
     void see(std::size_t n) { peakItems = std::max(peakItems, std::int64_t(n)); }
+    // A piece gives up with `items` on its list, over a share of maxItems, after `done` of its
+    // `total` inputs (triangle segments, paths): assuming the rest add as the first did, its
+    // whole list would be items / maxItems * total / done shares.
+    void refuse(std::size_t items, std::size_t maxItems, std::size_t done, std::size_t total) {
+        refusedOver = double(items) / double(std::max<std::size_t>(maxItems, 1)) * double(total) / double(std::max<std::size_t>(done, 1));
+    }
 };
 
 // One thread's share of the memory budget for the lists an exact method builds per tile
@@ -61,20 +70,14 @@ private:
     std::uint64_t m_resident = 0, m_share = kMinShareBytes;
 };
 
-// Renders rect by attempt(subRect, isPixel) -> bool. An attempt that would pass its share stops
-// and returns false, leaving the image alone; its rectangle is then halved across its longer side
-// and each half attempted in turn. A single pixel is attempted with isPixel true, and must then
-// keep within its share by cutting its lists, adding what it drops to counters.dropped.
 template <class Attempt>
-void renderWithinShare(const raster::PixelBounds& rect, TileBudgetCounters& counters, Attempt&& attempt) {
-    const bool isPixel = rect.x0 == rect.x1 && rect.y0 == rect.y1;
-    const std::int64_t dropped = counters.dropped;
-    const bool fits = attempt(rect, isPixel);
-    if (isPixel) {
-        if (counters.dropped > dropped) ++counters.pixelsCut;
-        return;
-    }
-    if (fits) return;
+void renderWithinShare(const raster::PixelBounds& rect, TileBudgetCounters& counters, Attempt&& attempt);
+
+// Halves rect across its longer side (counted in counters.splits), and each half again while it
+// still has more than one of `pieces` to hold and more than one pixel, then renders the parts
+// (renderWithinShare).
+template <class Attempt>
+void renderInPieces(const raster::PixelBounds& rect, double pieces, TileBudgetCounters& counters, Attempt&& attempt) {
     ++counters.splits;
     raster::PixelBounds first = rect, second = rect;
     if (rect.x1 - rect.x0 >= rect.y1 - rect.y0) {
@@ -84,8 +87,33 @@ void renderWithinShare(const raster::PixelBounds& rect, TileBudgetCounters& coun
         first.y1 = (rect.y0 + rect.y1) / 2;
         second.y0 = first.y1 + 1;
     }
-    renderWithinShare(first, counters, attempt);
-    renderWithinShare(second, counters, attempt);
+    for (const raster::PixelBounds& half : {first, second}) {
+        const bool isPixel = half.x0 == half.x1 && half.y0 == half.y1;
+        if (pieces > 2.0 && !isPixel) renderInPieces(half, 0.5 * pieces, counters, attempt);
+        else renderWithinShare(half, counters, attempt);
+    }
+}
+
+// Renders rect by attempt(subRect, isPixel) -> bool. An attempt that would pass its share stops,
+// refuses (counters.refuse: how many shares its whole list would take) and returns false,
+// leaving the image alone. Its rectangle is then cut into that many pieces, halving across the
+// longer side without attempting the halves between, and each piece is attempted in turn (a
+// piece that still passes is cut again). Going straight to the pieces spares the work of the
+// attempts a halving at a time would make at every size between. A single pixel is attempted
+// with isPixel true, and must then keep within its share by cutting its lists, adding what it
+// drops to counters.dropped.
+template <class Attempt>
+void renderWithinShare(const raster::PixelBounds& rect, TileBudgetCounters& counters, Attempt&& attempt) {
+    const bool isPixel = rect.x0 == rect.x1 && rect.y0 == rect.y1;
+    const std::int64_t dropped = counters.dropped;
+    counters.refusedOver = 0.0;
+    const bool fits = attempt(rect, isPixel);
+    if (isPixel) {
+        if (counters.dropped > dropped) ++counters.pixelsCut;
+        return;
+    }
+    if (fits) return;
+    renderInPieces(rect, counters.refusedOver, counters, attempt);
 }
 
 // A single pixel's cut: keeps, of each sample's items (item.sample in [0, numSamples)), at

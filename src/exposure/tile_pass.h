@@ -140,15 +140,20 @@ void renderExactTile(const raster::TileGrid& grid, int tile, ExactTileScratch<Ca
 inline constexpr std::size_t kBytesPerTileRecord = 2 * sizeof(TileRecord);
 inline std::size_t maxTileRecords(const TileBudget& budget) { return budget.maxItems(kBytesPerTileRecord); }
 
-// Called after each triangle segment of a rectangle's interval search (numSamples in it): false
-// once scratch.records pass maxRecords, and the rectangle is to be halved (renderWithinShare). A
-// single pixel instead keeps each sample's nearest records, down to half its share (so the cut
-// is not repeated at every segment), and goes on.
+// Called after each triangle segment of a rectangle's interval search (numSamples in it; `done`
+// of its `total` segments searched): false once scratch.records pass maxRecords, and the
+// rectangle is to be cut (renderWithinShare, told how many shares it would take). A single pixel
+// instead keeps each sample's nearest records, down to half its share (so the cut is not
+// repeated at every segment), and goes on.
 template <class Cache, class Counters>
-bool keepRecordsWithinShare(ExactTileScratch<Cache, Counters>& scratch, std::size_t maxRecords, bool isPixel, std::size_t numSamples) {
+bool keepRecordsWithinShare(ExactTileScratch<Cache, Counters>& scratch, std::size_t maxRecords, bool isPixel, std::size_t numSamples,
+                            std::size_t done, std::size_t total) {
     scratch.budget.see(scratch.records.size());
     if (scratch.records.size() <= maxRecords) return true;
-    if (!isPixel) return false;
+    if (!isPixel) {
+        scratch.budget.refuse(scratch.records.size(), maxRecords, done, total);
+        return false;
+    }
     const std::size_t dropped = keepNearestPerSample(
         scratch.records, numSamples, maxRecords / (2 * numSamples), scratch.runs, scratch.bySample, scratch.nearness,
         [](std::span<TileRecord> run) { return run.size(); },

@@ -42,6 +42,39 @@ TEST(RenderWithinShare, HalvesUntilEveryPieceFitsAndCoversTheTileOnce) {
     }
 }
 
+TEST(RenderWithinShare, GoesStraightToThePiecesARefusedAttemptAsksFor) {
+    // 256 pixels where 8 fit: a refusal that says "32 shares" is cut into 32 pieces of 8 pixels
+    // at once (16x16 -> 8x16 -> 8x8 -> 4x8 -> 4x4 -> 2x4), none of the sizes between attempted.
+    const raster::PixelBounds tile{0, 0, 15, 15};
+    std::vector<int> rendered(256, 0);
+    TileBudgetCounters counters;
+    int attempts = 0, refused = 0;
+    renderWithinShare(tile, counters, [&](const raster::PixelBounds& r, bool isPixel) {
+        ++attempts;
+        if (area(r) > 8 && !isPixel) {
+            ++refused;
+            counters.refuse(std::size_t(area(r)), 8, 1, 1);
+            return false;
+        }
+        EXPECT_EQ(area(r), 8);
+        for (int y = r.y0; y <= r.y1; ++y)
+            for (int x = r.x0; x <= r.x1; ++x) ++rendered[std::size_t(y * 16 + x)];
+        return true;
+    });
+    EXPECT_TRUE(std::all_of(rendered.begin(), rendered.end(), [](int n) { return n == 1; }));
+    EXPECT_EQ(refused, 1);
+    EXPECT_EQ(attempts, 33);
+    EXPECT_EQ(counters.splits, 31);  // the halvings of a binary tree with 32 leaves
+}
+
+TEST(TileBudgetCounters, ARefusalEstimatesTheWholeListFromHowFarItGot) {
+    TileBudgetCounters c;
+    c.refuse(150, 100, 25, 100);  // 1.5 shares after a quarter of the inputs: 6 for all of them
+    EXPECT_DOUBLE_EQ(c.refusedOver, 6.0);
+    c.refuse(150, 100, 0, 100);  // (none done is taken as one)
+    EXPECT_DOUBLE_EQ(c.refusedOver, 150.0);
+}
+
 TEST(RenderWithinShare, CountsAPixelAsCutOnlyWhereItDropped) {
     TileBudgetCounters counters;
     renderWithinShare({0, 0, 1, 0}, counters, [&](const raster::PixelBounds& r, bool isPixel) {

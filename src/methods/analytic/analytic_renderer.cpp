@@ -194,8 +194,9 @@ private:
         const std::size_t numSamples = scratch.sampleNdc.size();
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
-        for (const std::uint32_t index : items) {
-            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
+        for (std::size_t k = 0; k < items.size(); ++k) {
+            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples, k, items.size())) return false;
+            const std::uint32_t index = items[k];
             const exposure::TriangleSegment& segment = segments[index];
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
@@ -304,7 +305,7 @@ private:
                 }
             }
         }
-        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
+        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples, items.size(), items.size())) return false;
         // Per sample: resolve the intervals exactly and shade what shows.
         const exposure::ExactDepthOfSource exactDepth = [&](std::uint32_t source, float t, const glm::dvec2& ndc) {
             const exposure::TriangleSegment& s = segments[source];

@@ -270,8 +270,9 @@ private:
         scratch.records.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         const std::size_t numSamples = scratch.sampleNdc.size();
-        for (const std::uint32_t index : items) {
-            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
+        for (std::size_t k = 0; k < items.size(); ++k) {
+            if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples, k, items.size())) return false;
+            const std::uint32_t index = items[k];
             const raster::PixelBounds& box = frame.bounds[index];
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
@@ -301,7 +302,7 @@ private:
                         }
                 }
         }
-        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples)) return false;
+        if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples, items.size(), items.size())) return false;
         exposure::resolveExactTile(
             rect, frame.pattern, frame.scene, triangles, width, height, frame.options.resolve, start, scratch, image,
             [&](std::uint32_t source) { return segments[source].triangle; },

@@ -128,9 +128,9 @@ public:
         budget.measure();
         {
             PhaseTimer timer(context.stats, "tiles");
-            const std::size_t maxFragments = budget.maxItems(kBytesPerFragment);
+            const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
             grid.forEachTile([&](int tile) {
-                renderTile(frame, grid, tile, maxFragments, scratch.local(), image);
+                renderTile(frame, grid, tile, shareFragments, scratch.local(), image);
             }, /*includeEmpty=*/true);
         }
         if (context.progress) context.progress->update(1.0);
@@ -304,32 +304,37 @@ private:
                            fragments.begin());
     }
 
-    // A tile, in halves while its fragments would pass maxFragments (exposure::renderWithinShare).
-    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, std::size_t maxFragments, TileScratch& scratch,
+    // A tile, in halves while its fragments would pass shareFragments (exposure::renderWithinShare).
+    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, std::size_t shareFragments, TileScratch& scratch,
                     std::vector<glm::vec3>& image) const {
         scratch.movingTriangles.clear();
         exposure::renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
-            return renderRect(frame, grid.items(tile), rect, isPixel, maxFragments, scratch, image);
+            return renderRect(frame, grid.items(tile), rect, isPixel, shareFragments, scratch, image);
         });
     }
 
-    // After each path rasterized into rect (numSamples in it): false once the fragments pass
-    // maxFragments. A single pixel instead keeps each sample's nearest paths, once each, down
-    // to half its share (so the cut is not repeated at every path), and goes on.
-    static bool keepFragmentsWithinShare(TileScratch& scratch, std::size_t maxFragments, bool isPixel, std::size_t numSamples) {
+    // After each path rasterized into rect (numSamples in it; `done` of its `total` paths): false
+    // once the fragments pass shareFragments (exposure::renderWithinShare cuts the rectangle). A
+    // single pixel instead keeps each sample's nearest paths, once each, down to half its share
+    // (so the cut is not repeated at every path), and goes on.
+    static bool keepFragmentsWithinShare(TileScratch& scratch, std::size_t shareFragments, bool isPixel, std::size_t numSamples,
+                                         std::size_t done, std::size_t total) {
         scratch.budget.see(scratch.fragments.size());
-        if (scratch.fragments.size() <= maxFragments) return true;
-        if (!isPixel) return false;
+        if (scratch.fragments.size() <= shareFragments) return true;
+        if (!isPixel) {
+            scratch.budget.refuse(scratch.fragments.size(), shareFragments, done, total);
+            return false;
+        }
         scratch.budget.dropped += std::int64_t(exposure::keepNearestPerSample(
-            scratch.fragments, numSamples, maxFragments / (2 * numSamples), scratch.fragmentRuns, scratch.bySample, scratch.nearness,
+            scratch.fragments, numSamples, shareFragments / (2 * numSamples), scratch.fragmentRuns, scratch.bySample, scratch.nearness,
             uniquePaths, [](const Fragment& f) { return f.nearness; }));
         return true;
     }
 
     // The pixels of rect, within a tile whose paths are `items`; false, with the image left
-    // alone, once its fragments pass maxFragments (a single pixel cuts them instead).
+    // alone, once its fragments pass shareFragments (a single pixel cuts them instead).
     bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
-                    std::size_t maxFragments, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+                    std::size_t shareFragments, TileScratch& scratch, std::vector<glm::vec3>& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
@@ -341,11 +346,12 @@ private:
         // it covers.
         auto start = Clock::now();
         scratch.fragments.clear();
-        for (const std::uint32_t index : items) {
-            if (!keepFragmentsWithinShare(scratch, maxFragments, isPixel, numSamples)) {
+        for (std::size_t k = 0; k < items.size(); ++k) {
+            if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, k, items.size())) {
                 counters.rasterSeconds += secondsSince(start);
                 return false;
             }
+            const std::uint32_t index = items[k];
             const exposure::TriangleSegment& segment = frame.paths[index];
             motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
             counters.pathFaces += scratch.path.count;
@@ -364,7 +370,7 @@ private:
                 }
             }
         }
-        if (!keepFragmentsWithinShare(scratch, maxFragments, isPixel, numSamples)) {
+        if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, items.size(), items.size())) {
             counters.rasterSeconds += secondsSince(start);
             return false;
         }
