@@ -3,6 +3,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -85,6 +86,44 @@ inline void addPixelQuad(Scene& scene, const PixelCamera& cam, std::uint32_t mat
                          float dx = 0.0f, float dy = 0.0f) {
     addMovingQuad(scene, material, {cam.at(x0, y0), cam.at(x0, y1), cam.at(x1, y1), cam.at(x1, y0)},
                   {cam.at(x0 + dx, y0 + dy), cam.at(x0 + dx, y1 + dy), cam.at(x1 + dx, y1 + dy), cam.at(x1 + dx, y0 + dy)});
+}
+
+// The raster square [lo, hi]^2 of a size x size image at depth 2 as two single-triangle meshes
+// split along the diagonal x = y (raster), which runs through every pixel centre and every grid
+// sample on it; both move by (d, d) pixels over the shutter, along the diagonal, so it stays on
+// those samples at every time (its edge functions there are exact zeros). `upper` colours the
+// triangle right of the diagonal (x > y), whose left edge it is: the top-left rule gives it the
+// samples on the diagonal.
+inline Scene diagonalSplitSquare(int size, float lo, float hi, float d, glm::vec3 upper, glm::vec3 lower, float opacity) {
+    Scene scene = emptyScene();
+    const PixelCamera cam{size, size, 2.0f};
+    const std::array<std::uint32_t, 2> materials{addMaterial(scene, upper, opacity), addMaterial(scene, lower, opacity)};
+    // Corners top-left, bottom-left, bottom-right, top-right (counter-clockwise on screen).
+    const std::array<glm::vec2, 4> corners{glm::vec2(lo, lo), glm::vec2(lo, hi), glm::vec2(hi, hi), glm::vec2(hi, lo)};
+    const std::array<std::array<int, 3>, 2> halves{{{0, 2, 3}, {0, 1, 2}}};
+    for (int h = 0; h < 2; ++h) {
+        Mesh mesh;
+        mesh.material = materials[std::size_t(h)];
+        for (const float shift : {0.0f, d})
+            for (const int c : halves[std::size_t(h)]) mesh.positions.push_back(cam.at(corners[std::size_t(c)].x + shift, corners[std::size_t(c)].y + shift));
+        mesh.triangles = {{0, 1, 2}};
+        scene.meshes.push_back(mesh);
+    }
+    validateScene(scene);
+    return scene;
+}
+
+// diagonalSplitSquare's closed form at pixel (px, py) over black, for the N x N grid of cell
+// centres (RenderSettings::isGridPattern) of a square that covers the pixel all shutter: each
+// sample shows the triangle that owns it, once, its colour times the opacity.
+inline glm::vec3 diagonalSplitPixel(int px, int py, int aa, glm::vec3 upper, glm::vec3 lower, float opacity) {
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < aa; ++j)
+        for (int i = 0; i < aa; ++i) {
+            const float x = float(px) + (float(i) + 0.5f) / float(aa), y = float(py) + (float(j) + 0.5f) / float(aa);
+            sum += x >= y ? upper : lower;
+        }
+    return opacity * sum / float(aa * aa);
 }
 
 // Red moves from depth 2 to 4, green from 4 to 2, both covering an 8x8 image.

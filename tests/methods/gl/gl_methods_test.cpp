@@ -198,3 +198,35 @@ INSTANTIATE_TEST_SUITE_P(BuiltinScenes, PostFilterGlAgreement,
 
 }  // namespace
 }  // namespace streak
+
+namespace streak {
+namespace {
+
+// fill_rule_methods_test's shared edge on the GL methods: the diagonal of a split square runs
+// through sample positions, still and moving along itself (its edge functions there are exact
+// zeros at every time), and each such sample is covered once by the top-left rule: opaque, it
+// shows the triangle right of the diagonal; translucent, it is blended once. The expected
+// pixels are the rule's closed form (test::diagonalSplitPixel).
+TEST(GlFillRule, ASharedEdgeThroughSamplesCoversEachOnceStillAndMovingAlongIt) {
+    const glm::vec3 upper(0.9f, 0.2f, 0.1f), lower(0.1f, 0.3f, 0.8f);
+    constexpr int kSize = 16;
+    for (const char* method : {"motion-path-gl", "accumulation-gl", "stochastic-gl"})
+        for (const float opacity : {1.0f, 0.5f})
+            for (const float d : {0.0f, 3.0f, -5.25f})
+                for (const int aa : {1, 2}) {
+                    OptionMap options;
+                    if (std::string(method) != "motion-path-gl") options.set("samples", "4");
+                    const Scene scene = test::diagonalSplitSquare(kSize, -8.0f, 24.0f, d, upper, lower, opacity);
+                    const Image image = test::render(method, scene, kSize, kSize, options, nullptr, ShadingMode::Unlit, aa, /*isGridPattern=*/true);
+                    int wrong = 0;
+                    for (int py = 0; py < kSize; ++py)
+                        for (int px = 0; px < kSize; ++px) {
+                            const glm::vec3 expected = test::diagonalSplitPixel(px, py, aa, upper, lower, opacity);
+                            for (int c = 0; c < 3; ++c) wrong += std::abs(image.at(px, py)[c] - expected[c]) > 1e-5f;
+                        }
+                    EXPECT_EQ(wrong, 0) << method << " opacity " << opacity << " d " << d << " aa " << aa;
+                }
+}
+
+}  // namespace
+}  // namespace streak

@@ -101,6 +101,33 @@ HomogeneousSample sampleAt(MovingTriangle m, double u, dvec2 ndc) {
 
 bool isFrontFacingAt(MovingTriangle m, double u) { return dot(cornerAt(m, 0, u), edgeVector(m, 1, u)) > 0.0; }
 
+// raster::isInsideByEdges: all edges of one sign (either orientation), and an edge within
+// float precision of zero (|value| <= 1e-6 of its terms' scale, kOnEdgeTolerance) goes by the
+// rasterizer's top-left rule, so that two triangles sharing an edge through the sample cover it
+// once: inside right of the edge in raster x, or below a horizontal one.
+bool isInsideByEdges(dvec3 edges[3], dvec2 ndc, double values[3]) {
+    bool isOn[3];
+    double orientation = 0.0;
+    bool isOutside = false;
+    for (int e = 0; e < 3; ++e) {
+        double scale = abs(edges[e].x * ndc.x) + abs(edges[e].y * ndc.y) + abs(edges[e].z);
+        isOn[e] = abs(values[e]) <= 1e-6 * scale;
+        if (!isOn[e]) {
+            if (orientation != 0.0 && (orientation > 0.0) != (values[e] > 0.0)) isOutside = true;
+            orientation = values[e];
+        }
+    }
+    if (isOutside) return false;
+    if (orientation == 0.0) return true;  // every edge through the sample: a degenerate instant
+    for (int e = 0; e < 3; ++e) {
+        if (!isOn[e]) continue;
+        // Inward gradient in NDC (y up); raster y points down.
+        dvec3 v = edges[e] * (orientation > 0.0 ? 1.0 : -1.0);
+        if (!(v.x > 0.0 || (v.x == 0.0 && v.y < 0.0))) return false;
+    }
+    return true;
+}
+
 // MovingTriangle::insideSpans: the spans of u in which the sample lies inside (either
 // orientation; beyond the near plane when checkNearPlane). Start/end pairs; returns the count.
 int insideSpans(MovingTriangle m, dvec2 ndc, double zNear, bool checkNearPlane, out double bounds[8]) {
@@ -133,7 +160,9 @@ int insideSpans(MovingTriangle m, dvec2 ndc, double zNear, bool checkNearPlane, 
         if (!(breaks[i + 1] > breaks[i])) continue;
         double u = 0.5 * (breaks[i] + breaks[i + 1]);
         double e0 = quadraticAt(q[0], u), e1 = quadraticAt(q[1], u), e2 = quadraticAt(q[2], u);
-        bool inside = (e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0);
+        dvec3 edges[3] = dvec3[3](edgeVector(m, 0, u), edgeVector(m, 1, u), edgeVector(m, 2, u));
+        double values[3] = double[3](e0, e1, e2);
+        bool inside = isInsideByEdges(edges, ndc, values);
         if (inside && checkNearPlane) inside = sampleAt(m, u, ndc).viewDepth >= zNear;
         if (inside != wasInside) bounds[count++] = breaks[i];
         wasInside = inside;
