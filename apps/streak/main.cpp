@@ -486,7 +486,8 @@ int run(int argc, char** argv) {
     render->add_option("--taps-per-texel", renderArgs.tapsPerTexel,
                        "motion-path: texture taps per texel of the footprint's mip level along an interval's uv path (2)");
     render->add_option("--curve-segments", renderArgs.curveSegments,
-                       "motion-path: linear segments per key segment for curved screen motion (moving camera, Bezier keys) (4)");
+                       "motion-path: linear segments per key segment for curved screen motion (turning camera, Bezier keys); 0: as many "
+                       "(1, 2, 4 ... 64) as keep vertices within 1/8 pixel of their screen paths (0)");
     render->add_option("--gpu-memory", renderArgs.gpuMemory,
                        "GL methods: MB the per-sample lists may grow to before the per-sample budget applies (1024)");
     render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");

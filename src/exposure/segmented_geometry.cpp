@@ -3,6 +3,7 @@
 #include "raster/moving_triangle.h"
 
 #include <glm/common.hpp>
+#include <glm/mat4x4.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -13,7 +14,60 @@
 
 namespace streak::exposure {
 
-int SegmentedGeometry::segmentCount(const Scene& scene, int curveSegments) {
+namespace {
+
+// Vertices probed for the deviation of linear pieces: evenly strided over the scene, at most this
+// many, so that the choice costs no more on a dense mesh than on a small one.
+constexpr std::size_t kMaxProbeVertices = 4096;
+constexpr double kSeenNdc = 1.5;
+
+// The largest screen distance, in pixels of a viewport.height tall image, between a probed
+// vertex's true position at the middle of each of numSegments even pieces of the shutter (its
+// motion at that time, seen through the camera at that time) and where the piece puts it (its
+// clip-space position interpolated linearly between the piece's ends, as the exact methods do).
+// Only points seen at that time are counted: in front of the near plane, and within a quarter of
+// the image beyond its borders (|NDC| <= 1.5). Off screen, and most of all near the eye plane,
+// NDC distances grow without bound and say nothing of the image.
+double pieceDeviation(const Scene& scene, const raster::Viewport& viewport, int numSegments) {
+    const float aspect = float(viewport.width) / float(viewport.height);
+    const double pixelsPerNdc = 0.5 * double(viewport.height);
+    std::size_t numVertices = 0;
+    for (const Mesh& mesh : scene.meshes) numVertices += mesh.numVertices();
+    const std::size_t stride = std::max<std::size_t>(1, numVertices / kMaxProbeVertices);
+    double worst = 0.0;
+    for (int k = 0; k < numSegments; ++k) {
+        const std::array<float, 3> times{float(k) / float(numSegments), (float(k) + 0.5f) / float(numSegments),
+                                         float(k + 1) / float(numSegments)};
+        std::array<glm::dmat4, 3> clipFromWorld;
+        for (int i = 0; i < 3; ++i) clipFromWorld[std::size_t(i)] = glm::dmat4(scene.camera.clipFromWorld(times[std::size_t(i)], aspect));
+        std::size_t next = 0;  // the next probed vertex, counted over all meshes
+        std::size_t first = 0;
+        for (const Mesh& mesh : scene.meshes) {
+            const std::array<MotionWeights, 3> weights{mesh.weightsAt(times[0]), mesh.weightsAt(times[1]), mesh.weightsAt(times[2])};
+            const std::size_t n = mesh.numVertices();
+            for (; next < first + n; next += stride) {
+                const std::uint32_t v = std::uint32_t(next - first);
+                std::array<glm::dvec4, 3> clip;
+                for (int i = 0; i < 3; ++i)
+                    clip[std::size_t(i)] = clipFromWorld[std::size_t(i)] * glm::dvec4(glm::dvec3(mesh.positionAt(v, weights[std::size_t(i)])), 1.0);
+                const glm::dvec4 linear = 0.5 * (clip[0] + clip[2]);
+                const glm::dvec4& truth = clip[1];
+                if (!(linear.w > scene.camera.zNear) || !(truth.w > scene.camera.zNear)) continue;
+                const glm::dvec2 seen = glm::dvec2(truth) / truth.w;
+                if (!(std::abs(seen.x) <= kSeenNdc && std::abs(seen.y) <= kSeenNdc)) continue;
+                const glm::dvec2 d = (glm::dvec2(linear) / linear.w - seen) * pixelsPerNdc;
+                const double pixels = std::hypot(d.x * aspect, d.y);
+                if (std::isfinite(pixels)) worst = std::max(worst, pixels);
+            }
+            first += n;
+        }
+    }
+    return worst;
+}
+
+}  // namespace
+
+SegmentedGeometry::SegmentPlan SegmentedGeometry::plan(const Scene& scene, int curveSegments, const raster::Viewport& viewport) {
     int maxKeys = 2;
     // A moving camera that does not turn keeps linear motion linear (Camera::isTurning).
     bool isCurved = scene.camera.isTurning();
@@ -21,11 +75,24 @@ int SegmentedGeometry::segmentCount(const Scene& scene, int curveSegments) {
         maxKeys = std::max(maxKeys, mesh.numKeys);
         isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
     }
-    return (maxKeys - 1) * (isCurved ? std::max(1, curveSegments) : 1);
+    const int keySegments = maxKeys - 1;
+    SegmentPlan plan;
+    if (!isCurved) plan.piecesPerKey = 1;
+    else if (curveSegments != kAutoCurveSegments) plan.piecesPerKey = std::clamp(curveSegments, 1, kMaxCurveSegments);
+    else
+        for (int pieces = 1;; pieces *= 2) {
+            plan.piecesPerKey = pieces;
+            plan.deviationPixels = pieceDeviation(scene, viewport, keySegments * pieces);
+            if (plan.deviationPixels <= kCurveTolerancePixels || pieces >= kMaxCurveSegments) break;
+        }
+    plan.numSegments = keySegments * plan.piecesPerKey;
+    return plan;
 }
 
-SegmentedGeometry::SegmentedGeometry(const Scene& scene, float aspect, int curveSegments) : m_flat(scene) {
-    m_numSegments = segmentCount(scene, curveSegments);
+SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments) : m_flat(scene) {
+    m_plan = plan(scene, curveSegments, viewport);
+    m_numSegments = m_plan.numSegments;
+    const float aspect = float(viewport.width) / float(viewport.height);
 
     const int n = m_numSegments;
     m_positions.resize(std::size_t(n) + 1), m_normals.resize(std::size_t(n) + 1);
@@ -105,6 +172,11 @@ std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::V
         b = raster::pixelBoundsOfRaster(lo, hi, viewport);
     });
     return bounds;
+}
+
+void recordSegmentPlan(RenderStats& stats, const SegmentedGeometry::SegmentPlan& plan) {
+    stats.setCounter("curve_segments", plan.piecesPerKey);
+    if (plan.deviationPixels >= 0.0) stats.setCounter("curve_deviation_px", plan.deviationPixels);
 }
 
 }  // namespace streak::exposure

@@ -3,6 +3,7 @@
 #include "raster/screen_triangle.h"
 #include "scene/flat_geometry.h"
 #include "scene/scene.h"
+#include "util/stats.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -36,15 +37,32 @@ struct TriangleSegment {
 // every exact-time method (motion paths, analytic edge equations) works on. Linear keys under a
 // camera that does not turn (still, or moving without turning) move linearly in clip space, so
 // one segment per key segment is exact. Curved screen motion (Bezier keys, a turning camera) is
-// followed by curveSegments linear pieces per key segment. Segments are triangle-major: segment s of triangle i is at i * numSegments + s.
+// followed by linear pieces per key segment: curveSegments of them, or with curveSegments =
+// kAutoCurveSegments as many (1, 2, 4, ... 64) as keep the scene's vertices within
+// kCurveTolerancePixels of their true screen paths (SegmentPlan). Segments are triangle-major:
+// segment s of triangle i is at i * numSegments + s.
 class SegmentedGeometry {
 public:
-    SegmentedGeometry(const Scene& scene, float aspect, int curveSegments);
+    static constexpr int kAutoCurveSegments = 0;
+    // The key chooser's default screen tolerance (--key-tolerance): how far, in pixels of the
+    // image's height, a linear piece may stray from a vertex's curved screen path.
+    static constexpr double kCurveTolerancePixels = 0.125;
+    static constexpr int kMaxCurveSegments = 64;
 
-    // How many linear segments each triangle's motion is cut into: one per key segment, or
-    // curveSegments per key segment where screen motion is curved.
-    static int segmentCount(const Scene& scene, int curveSegments);
+    // How a scene's motion is cut: numSegments linear segments over the shutter, piecesPerKey of
+    // them per key segment, and the largest screen distance (pixels) measured between a probed
+    // vertex's true position at the middle of a piece and the piece's linear one (-1 where
+    // nothing was measured: linear motion, or a fixed curveSegments).
+    struct SegmentPlan {
+        int numSegments = 1;
+        int piecesPerKey = 1;
+        double deviationPixels = -1.0;
+    };
+    static SegmentPlan plan(const Scene& scene, int curveSegments, const raster::Viewport& viewport);
 
+    SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments);
+
+    const SegmentPlan& segmentPlan() const { return m_plan; }
     const Scene& scene() const { return m_flat.scene(); }
     const FlatGeometry& flat() const { return m_flat; }
     int numSegments() const { return m_numSegments; }
@@ -70,10 +88,14 @@ public:
 
 private:
     FlatGeometry m_flat;
+    SegmentPlan m_plan;
     int m_numSegments = 1;
     std::vector<TriangleSegment> m_segments;
     std::vector<std::vector<glm::vec3>> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
 };
+
+// --stats: curve_segments (pieces per key segment) and, where measured, curve_deviation_px.
+void recordSegmentPlan(RenderStats& stats, const SegmentedGeometry::SegmentPlan& plan);
 
 }  // namespace streak::exposure

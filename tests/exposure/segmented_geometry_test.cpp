@@ -1,9 +1,13 @@
 #include "exposure/segmented_geometry.h"
 #include "support/test_scenes.h"
+#include "util/random.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace streak::exposure {
 
@@ -39,7 +43,7 @@ TEST(SegmentedGeometry, CornersAreEachMeshsVerticesAtTheSegmentEnds) {
     scene.camera.close.worldFromCamera = glm::angleAxis(0.1f, glm::vec3(0.0f, 1.0f, 0.0f));
     validateScene(scene);
 
-    const SegmentedGeometry geometry(scene, 4.0f / 3.0f, 4);
+    const SegmentedGeometry geometry(scene, raster::Viewport{640, 480}, 4);
     ASSERT_EQ(geometry.numSegments(), 4);
     ASSERT_EQ(geometry.flat().triangles().size(), 4u);
     for (std::uint32_t tri = 0; tri < 4; ++tri) {
@@ -85,7 +89,7 @@ TEST(SegmentedGeometry, ACameraMovingWithoutTurningKeepsOneSegmentPerKey) {
     validateScene(scene);
     ASSERT_FALSE(scene.camera.isTurning());
     const float aspect = 4.0f / 3.0f;
-    const SegmentedGeometry geometry(scene, aspect, 4);
+    const SegmentedGeometry geometry(scene, raster::Viewport{640, 480}, 4);
     ASSERT_EQ(geometry.numSegments(), 1);
     const Mesh& mesh = scene.meshes[0];
     for (std::uint32_t tri = 0; tri < 2; ++tri) {
@@ -103,7 +107,63 @@ TEST(SegmentedGeometry, ACameraMovingWithoutTurningKeepsOneSegmentPerKey) {
     // The same camera turning a little: the projection is no longer linear in t.
     scene.camera.close.worldFromCamera = glm::angleAxis(0.05f, glm::vec3(0.0f, 1.0f, 0.0f));
     ASSERT_TRUE(scene.camera.isTurning());
-    EXPECT_EQ(SegmentedGeometry::segmentCount(scene, 4), 4);
+    EXPECT_EQ(SegmentedGeometry::plan(scene, 4, raster::Viewport{640, 480}).numSegments, 4);
+}
+
+// A static quad under a camera that moves and turns 0.6 radians: by default the shutter is cut
+// into as many pieces (1, 2, 4 ...) as keep the vertices within kCurveTolerancePixels of their
+// true screen paths. Checked here against the camera itself at random times, not at the piece
+// middles the choice probes: every corner of every piece stays within 1.5 times the tolerance of
+// its exact projection, and half as many pieces would stray past the tolerance.
+TEST(SegmentedGeometry, ATurningCameraIsCutUntilTheScreenPathsAreWithinTheTolerance) {
+    Scene scene = test::emptyScene();
+    const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f));
+    const std::array<glm::vec3, 4> quad{glm::vec3(-2, 2, -5), glm::vec3(-2, -2, -6), glm::vec3(2, -2, -5), glm::vec3(2, 2, -4)};
+    test::addMovingQuad(scene, m, quad, quad);
+    scene.camera.close.position = glm::vec3(0.4f, 0.1f, 0.2f);
+    scene.camera.close.worldFromCamera = glm::angleAxis(0.6f, glm::vec3(0.0f, 1.0f, 0.0f));
+    validateScene(scene);
+    const raster::Viewport viewport{320, 240};
+    const float aspect = 4.0f / 3.0f;
+    const double pixelsPerNdc = 0.5 * viewport.height;
+
+    // The largest distance, in pixels, between a piece's linear corners and the exact projection.
+    Rng rng(5);
+    auto worstStray = [&](const SegmentedGeometry& geometry) {
+        double worst = 0.0;
+        const Mesh& mesh = scene.meshes[0];
+        for (int i = 0; i < 200; ++i) {
+            const float t = rng.uniform(0.0f, 1.0f);
+            const glm::mat4 clipFromWorld = scene.camera.clipFromWorld(t, aspect);
+            for (std::uint32_t tri = 0; tri < 2; ++tri) {
+                const TriangleSegment& segment = geometry.segmentAt(tri, t);
+                const float u = float(segment.localTime(t));
+                for (int c = 0; c < 3; ++c) {
+                    const glm::vec4 exact = clipFromWorld * glm::vec4(mesh.positions[mesh.triangles[tri][c]], 1.0f);
+                    const glm::vec4 linear = glm::mix(segment.clip0[c], segment.clip1[c], u);
+                    const glm::dvec2 d = (glm::dvec2(linear) / double(linear.w) - glm::dvec2(exact) / double(exact.w)) * pixelsPerNdc;
+                    worst = std::max(worst, std::hypot(d.x * aspect, d.y));
+                }
+            }
+        }
+        return worst;
+    };
+
+    const SegmentedGeometry chosen(scene, viewport, SegmentedGeometry::kAutoCurveSegments);
+    const SegmentedGeometry::SegmentPlan& plan = chosen.segmentPlan();
+    EXPECT_GE(plan.piecesPerKey, 8);  // the 4 fixed pieces of before were not enough for this turn
+    EXPECT_EQ(chosen.numSegments(), plan.piecesPerKey);
+    EXPECT_LE(plan.deviationPixels, SegmentedGeometry::kCurveTolerancePixels);
+    EXPECT_LE(worstStray(chosen), 1.5 * SegmentedGeometry::kCurveTolerancePixels);
+    const SegmentedGeometry half(scene, viewport, plan.piecesPerKey / 2);
+    EXPECT_EQ(half.segmentPlan().deviationPixels, -1.0);  // a fixed count measures nothing
+    EXPECT_GT(worstStray(half), SegmentedGeometry::kCurveTolerancePixels);
+
+    // A camera that moves without turning keeps one piece per key segment, unmeasured.
+    scene.camera.close.worldFromCamera = scene.camera.open.worldFromCamera;
+    const SegmentedGeometry::SegmentPlan straight = SegmentedGeometry::plan(scene, SegmentedGeometry::kAutoCurveSegments, viewport);
+    EXPECT_EQ(straight.numSegments, 1);
+    EXPECT_EQ(straight.deviationPixels, -1.0);
 }
 
 }  // namespace streak::exposure

@@ -42,7 +42,7 @@ struct Options {
     bool checkDepthOrder = false;
     int textureSamples = 32;
     float tapsPerTexel = 2.0f;
-    int curveSegments = 4;
+    int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
 };
 
 struct Counters {
@@ -69,7 +69,7 @@ public:
         Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}};
         {
             PhaseTimer timer(context.stats, "setup");
-            frame.segmented.emplace(scene, float(settings.width) / float(settings.height), m_options.curveSegments);
+            frame.segmented.emplace(scene, viewport, m_options.curveSegments);
             frame.spanShading.maxTextureTaps = m_options.textureSamples;
             frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
             frame.computeBounds();
@@ -103,6 +103,7 @@ public:
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setInfo("simd", simd::levelName(frame.simd));
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
+        exposure::recordSegmentPlan(stats, frame.segmented->segmentPlan());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
         stats.setCounter("backface_intervals_culled", double(total.culledBackFacing));
@@ -348,7 +349,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
-    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.resolve.shading = exposure::pixelShadingOptions(options, "analytic");
     return std::make_unique<AnalyticRenderer>(o);
 }

@@ -47,7 +47,7 @@ struct Options {
     bool mergeSegments = true;
     int textureSamples = 16;
     bool sortIntervals = true;
-    int curveSegments = 4;
+    int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     float tapsPerTexel = 2.0f;
     exposure::PixelShadingOptions shading;
 };
@@ -185,7 +185,7 @@ public:
         stats.setCounter("exact_weights", m_options.exactWeights ? 1 : 0);
         stats.setCounter("texture_samples", m_options.textureSamples);
         stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
-        stats.setCounter("curve_segments", m_options.curveSegments);
+        exposure::recordSegmentPlan(stats, frame.segmented.segmentPlan());
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
         Image result(settings.width, settings.height);
@@ -200,7 +200,7 @@ private:
         Frame(const Scene& scene, const RenderSettings& settings, const Options& options)
             : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
               pattern(raster::samplePatternFor(settings.aa, settings.isGridPattern)),
-              segmented(scene, float(settings.width) / float(settings.height), options.curveSegments),
+              segmented(scene, raster::Viewport{settings.width, settings.height}, options.curveSegments),
               geometry(segmented.flat()), paths(segmented.segments()) {
             spanShading.maxTextureTaps = options.textureSamples;
             spanShading.tapsPerTexel = options.tapsPerTexel;
@@ -565,7 +565,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
-    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
     o.shading = exposure::pixelShadingOptions(options, "motion-path");
     return std::make_unique<MotionPathRenderer>(o);

@@ -27,7 +27,7 @@ struct Options {
     int textureSamples = 32;
     int tapsPerTexel = 2;
     bool sortIntervals = true;
-    int curveSegments = 4;
+    int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     int gpuMemoryMb = 1024;
 };
 
@@ -49,7 +49,9 @@ public:
         gpu::GlContext& gl = gpu::sharedContext();
         const FlatGeometry geometry(scene);
         const gpu::SampleGrid grid{settings.width, settings.height, settings.aa};
-        const int numSegments = exposure::SegmentedGeometry::segmentCount(scene, m_options.curveSegments);
+        const exposure::SegmentedGeometry::SegmentPlan plan =
+            exposure::SegmentedGeometry::plan(scene, m_options.curveSegments, raster::Viewport{settings.width, settings.height});
+        const int numSegments = plan.numSegments;
         std::optional<gpu::SceneBuffers> buffers;
         {
             PhaseTimer timer(context.stats, "upload");
@@ -164,7 +166,7 @@ public:
         stats.setCounter("mask_bits", m_options.maskBits);
         stats.setCounter("texture_samples", m_options.textureSamples);
         stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
-        stats.setCounter("curve_segments", m_options.curveSegments);
+        exposure::recordSegmentPlan(stats, plan);
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
         return image;
     }
@@ -186,7 +188,7 @@ std::unique_ptr<Renderer> createMotionPathGlRenderer(OptionMap& options) {
     o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.tapsPerTexel = options.getInt("taps-per-texel", 2, 1, 16);
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
-    o.curveSegments = options.getInt("curve-segments", 4, 1, 64);
+    o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.gpuMemoryMb = options.getInt("gpu-memory", 1024, 1, 1 << 20);
     return std::make_unique<MotionPathGlRenderer>(o);
 }

@@ -37,7 +37,7 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     settings.tapsPerTexel = 2.0f;
 
     // Every inside span of every segment at every pixel centre (up to a budget).
-    const exposure::SegmentedGeometry segmented(scene, float(width) / float(height), curveSegments);
+    const exposure::SegmentedGeometry segmented(scene, raster::Viewport{width, height}, curveSegments);
     const raster::SamplePattern pattern = raster::SamplePattern::rooks(1);
     std::vector<ShadingProbe> probes;
     for (int y = 0; y < height; y += 2)
