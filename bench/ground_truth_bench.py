@@ -14,14 +14,18 @@ method when its error (its noise plus the reference's) is no larger than the met
 top rung the spp are estimated from the error falling as 1/spp (fitted at the top rung), or the
 method is said to be within the reference's own noise.
 
-With --target-fg DB (issue 16's speed target: the time each takes to a given quality), each
-method instead climbs --aa-ladder until its foreground PSNR reaches DB, and Cycles its spp ladder;
-the table gives both times (streak's render time, least of --repeats at the chosen --aa; Cycles'
+With --target-fg DB[,DB...] (issue 16's speed target: the time each takes to a given quality),
+each method instead climbs --aa-ladder until its foreground PSNR reaches each DB, and Cycles its
+spp ladder; the table gives both times (streak's render time, least of --repeats at the chosen --aa; Cycles'
 render time, scene sync and BVH included, one render per rung) and their ratio.
+
+Built-in scenes (cubes, fence) are exported with `streak export` and take part when --models
+names them; `--models hd --width 1024 --height 768` is issue 33's 1024x768 yardstick (CesiumMan,
+Fox, ToyCar, AnimatedCube, BoxAnimated, cubes, fence).
 
 Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,motion-path:shading=sample]
     [--spp 1024] [--ladder 16,32,64,128,256,512] [--out DIR] [--streak build/streak]
-    [--blender blender] [--repeats 1] [--reuse-cycles] [--target-fg 40 --aa-ladder 1,2,3,4,6,8]
+    [--blender blender] [--repeats 1] [--reuse-cycles] [--target-fg 40,45 --aa-ladder 1,2,3,4,6,8]
 """
 import argparse
 import json
@@ -56,6 +60,11 @@ MODELS = [
     ("ToyCar", "ToyCar/glTF/ToyCar.gltf", {}),  # static, its first glTF camera
     ("MetalRoughSpheresNoTextures", "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", {}),
 ]
+# Built-in scenes, exported with `streak export` for Cycles (bench/cycles_reference.py): chosen by
+# name in --models, never by default. `--models hd` is issue 33's 1024x768 subset, where magnified
+# and minified textures both occur.
+BUILTINS = [("cubes", "builtin:cubes", {}), ("fence", "builtin:fence", {})]
+HD_MODELS = "CesiumMan,Fox,ToyCar,AnimatedCube,BoxAnimated,cubes,fence"
 STREAK_FLAGS = ["--aa", "8", "--shading", "unlit", "--background", "0,0,0"]
 
 
@@ -134,7 +143,8 @@ def earlier_renders(out, job, spp_list):
 
 def selection(args):
     """The models, methods and Cycles ladder (spp) the command line chose."""
-    chosen = [m for m in MODELS if not args.models or m[0] in args.models.split(",")]
+    names = (HD_MODELS if args.models == "hd" else args.models).split(",") if args.models else []
+    chosen = [m for m in MODELS + BUILTINS if m in MODELS and not names or m[0] in names]
     methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
     ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
     return chosen, methods, ladder_spp
@@ -143,11 +153,14 @@ def selection(args):
 def model_renders(args, name, path, flags, ladder_spp):
     """A model's scene file, its folder under args.out and its Cycles renders at the ladder's spp
     and the reference's: rendered now, or an earlier run's with --reuse-cycles."""
-    scene, out = os.path.join(SCENES, path), os.path.join(args.out, name)
+    is_builtin = path.startswith("builtin:")
+    scene, out = path if is_builtin else os.path.join(SCENES, path), os.path.join(args.out, name)
     os.makedirs(out, exist_ok=True)
     spp_list = ladder_spp + [args.spp]
     job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
            "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation")}
+    if is_builtin:  # the shutter as cycles_reference.render exports it: the first second, at 24 fps
+        job.update(frame=0.0, shutter=24.0)
     renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None
     if renders is None:
         renders = cycles_reference.render(scene, scene_flags(flags), spp_list, out, streak=args.streak,
@@ -163,52 +176,63 @@ def with_aa(flags, aa):
 
 
 def time_to_quality(args):
-    """Each method's and Cycles' time to foreground PSNR args.target_fg against the reference."""
+    """Each method's and Cycles' time to each foreground PSNR of args.target_fg against the reference."""
     chosen, methods, ladder_spp = selection(args)
     aa_ladder = [int(a) for a in args.aa_ladder.split(",")]
-    size, target = f"{args.width}x{args.height}", args.target_fg
-    print(f"Machine: {benchlib.machine()}. Time to {target:g} dB foreground PSNR at {size} against Cycles {args.spp} spp: "
-          f"streak {' '.join(with_aa(STREAK_FLAGS, 'N'))} for N in {args.aa_ladder} (render time, least of "
-          f"{args.repeats} at the first N that reaches it); Cycles at {args.ladder} spp (render time, scene sync and "
-          "BVH included, one render each).\n")
-    print("| model | Cycles: spp, fg PSNR, time | method | --aa | fg PSNR | time | Cycles / method |\n"
-          "|---|---|---|---:|---:|---:|---:|")
+    targets = [float(t) for t in args.target_fg.split(",")]
+    size = f"{args.width}x{args.height}"
+    print(f"Machine: {benchlib.machine()}. Time to {' and '.join(f'{t:g}' for t in targets)} dB foreground PSNR at {size} "
+          f"against Cycles {args.spp} spp: streak {' '.join(with_aa(STREAK_FLAGS, 'N'))} for N in {args.aa_ladder} "
+          f"(render time, least of {args.repeats} at the first N that reaches it); Cycles at {args.ladder} spp (render "
+          "time, scene sync and BVH included, one render each).\n")
+    print("| model | target | Cycles: spp, fg PSNR, time | method | --aa | fg PSNR | time | Cycles / method |\n"
+          "|---|---:|---|---|---:|---:|---:|---:|")
     streak = benchlib.Streak(args.streak, args.out, args.repeats)
     for name, path, flags in chosen:
         scene, out, renders = model_renders(args, name, path, flags, ladder_spp)
         reference = renders[args.spp]["path"]
-        cycles = None
+        cycles_rungs = []  # (spp, fg, seconds), climbed until every target is reached
         for spp in ladder_spp:
             _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
-            if fg >= target:
-                cycles = (spp, fg, renders[spp]["seconds"])
+            cycles_rungs.append((spp, fg, renders[spp]["seconds"]))
+            if fg >= max(targets):
                 break
-        cycles_text = f"{cycles[0]} spp, {db(cycles[1])}, {cycles[2]:.2f} s" if cycles else f"> {ladder_spp[-1]} spp"
         for spec in methods:
             method, options, stem = method_spec(spec)
             image = os.path.join(out, f"{stem}-target.exr")
-            found = None
+            rungs = []  # (aa, fg, seconds of one render), climbed until every target is reached
             for aa in aa_ladder:
                 args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, aa) + options
                 ms, _ = streak.render(scene, method, image, size=size, args=args_aa, repeats=1)
                 _, fg, _ = compare(args.streak, image, reference)
-                if fg >= target:
-                    if args.repeats > 1:
-                        ms, _ = streak.render(scene, method, image, size=size, args=args_aa)
-                    found = (aa, fg, ms / 1000)
+                rungs.append((aa, fg, ms / 1000))
+                if fg >= max(targets):
                     break
-            if found:
-                ratio = f"{cycles[2] / found[2]:.2f}" if cycles else "—"
-                print(f"| {name} | {cycles_text} | {spec} | {found[0]} | {db(found[1])} | {found[2]:.2f} s | {ratio} |", flush=True)
-            else:
-                print(f"| {name} | {cycles_text} | {spec} | > {aa_ladder[-1]} | {db(fg)} | — | — |", flush=True)
+            for target in targets:
+                cycles = next((r for r in cycles_rungs if r[1] >= target), None)
+                cycles_text = f"{cycles[0]} spp, {db(cycles[1])}, {cycles[2]:.2f} s" if cycles else f"> {ladder_spp[-1]} spp"
+                found = next((r for r in rungs if r[1] >= target), None)
+                if not found:
+                    print(f"| {name} | {target:g} dB | {cycles_text} | {spec} | > {aa_ladder[-1]} | {db(rungs[-1][1])} | — | — |",
+                          flush=True)
+                    continue
+                seconds = found[2]
+                if args.repeats > 1:
+                    args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, found[0]) + options
+                    ms, _ = streak.render(scene, method, image, size=size, args=args_aa)
+                    seconds = min(seconds, ms / 1000)
+                ratio = f"{cycles[2] / seconds:.2f}" if cycles else "—"
+                print(f"| {name} | {target:g} dB | {cycles_text} | {spec} | {found[0]} | {db(found[1])} | {seconds:.2f} s | {ratio} |",
+                      flush=True)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--streak", default=cycles_reference.STREAK)
     parser.add_argument("--blender", default="blender")
-    parser.add_argument("--models", default="", help="comma-separated model names (default: all)")
+    parser.add_argument("--models", default="",
+                        help="comma-separated model names, the shared models' or cubes, fence (built-in scenes); hd: "
+                             f"{HD_MODELS} (default: every shared model)")
     parser.add_argument("--methods", default="",
                         help="comma-separated methods, each NAME or NAME:key=value;... with method options (default: every CPU method)")
     parser.add_argument("--spp", type=int, default=1024, help="Cycles spp of the reference")
@@ -219,8 +243,8 @@ def main():
     parser.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "streak-ground-truth"))
     parser.add_argument("--reuse-cycles", action="store_true",
                         help="reuse the Cycles renders an earlier run left in --out for the same job (streak re-rendered only)")
-    parser.add_argument("--target-fg", type=float, default=None,
-                        help="time to this foreground PSNR: streak climbs --aa-ladder, Cycles its spp ladder")
+    parser.add_argument("--target-fg", default=None,
+                        help="time to these foreground PSNRs (comma-separated dB, e.g. 40,45): streak climbs --aa-ladder, Cycles its spp ladder")
     parser.add_argument("--aa-ladder", default="1,2,3,4,6,8", help="streak --aa values tried with --target-fg")
     args = parser.parse_args()
     if args.target_fg is not None:

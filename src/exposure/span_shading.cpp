@@ -1,5 +1,7 @@
 #include "exposure/span_shading.h"
 
+#include "util/error.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -89,6 +91,23 @@ private:
 
 }  // namespace
 
+SpanShadingSettings spanShadingSettings(OptionMap& options, const std::string& method) {
+    SpanShadingSettings s;
+    s.maxTextureTaps = options.getInt("texture-samples", 32, 1, 1024);
+    s.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    const std::string filter = options.getString("texture-filter", "swept");
+    if (filter == "taps") s.textureFilter = SpanTextureFilter::Taps;
+    else if (filter == "swept") s.textureFilter = SpanTextureFilter::Swept;
+    else throw Error("method '" + method + "': texture-filter must be taps or swept, got '" + filter + "'");
+    return s;
+}
+
+void recordSpanShadingSettings(RenderStats& stats, const SpanShadingSettings& settings) {
+    stats.setCounter("texture_samples", settings.maxTextureTaps);
+    stats.setCounter("taps_per_texel", settings.tapsPerTexel);
+    stats.setInfo("texture_filter", settings.textureFilter == SpanTextureFilter::Swept ? "swept" : "taps");
+}
+
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings) {
     const ShutterWindow& window = settings.window;
@@ -145,25 +164,10 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);
     const QuadraticThrough<glm::vec2> duvdyAt(ends[0].duvdy, ends[1].duvdy, ends[2].duvdy);
 
-    // A shared shading's box counts only the texels of the triangle its samples see, and each
-    // time as much as the triangle covers of the box then: the pixel sees the triangle's colour
-    // over time in proportion to its coverage. A time at which no tap is inside still counts a
-    // little, so a span never loses all its weight.
-    const bool isBox = point.hasBoxFootprint();
-    const std::array<glm::vec2, 3>* clipTo = isBox ? point.uvTriangle() : nullptr;
-    constexpr float kLeastCoverage = 1e-3f;
     // Texel sums; the base colour and the vertex colour multiply them once at the end.
     glm::vec3 sum(0.0f), specularSum(0.0f);
     float alphaSum = 0.0f, weightSum = 0.0f;
-    for (int i = 0; i < taps; ++i) {
-        const float f = (float(i) + 0.5f) / float(taps);
-        glm::vec2 uv = ends[1].uv;
-        // (The middle tap's uv is the middle end's, unless a clipped box wants it not held.)
-        if ((clipTo || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
-        const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, isBox, clipTo};
-        float weight = 1.0f;
-        const glm::vec4 texel = clipTo ? texture.sampleBox(uv, footprint, &weight) : texture.sample(uv, footprint);
-        weight = std::max(weight, kLeastCoverage);
+    auto accumulate = [&](const glm::vec4& texel, float f, float weight) {
         if (isLit) {
             const PhongTerms terms = lighting->at(f);
             sum += glm::vec3(texel) * terms.diffuse * weight;
@@ -174,10 +178,60 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         // Each tap's alpha goes through the alpha mode: Mask taps are 0 or 1, their mean coverage.
         alphaSum += material.alphaOf(texel.w * vertexColor.w) * weight;
         weightSum += weight;
+    };
+    auto result = [&]() -> ShadedColor {
+        if (weightSum == 0.0f) return {glm::vec3(0.0f), 0.0f};
+        const float scale = 1.0f / weightSum;
+        return {material.baseColor * glm::vec3(vertexColor) * sum * scale + specularSum * scale, alphaSum * scale};
+    };
+
+    const bool isBox = point.hasBoxFootprint();
+    // A mask's cutoff applies to each texel's alpha, before any mean (a point is in or out): a
+    // swept lookup averages alpha over the path first, so masked materials keep the taps.
+    if (settings.textureFilter == SpanTextureFilter::Swept && !isBox && material.alphaMode != AlphaMode::Mask) {
+        // Straight pieces: a quadratic's middle lies off its chord by (its bend), and by a
+        // quarter of that per halving of the pieces.
+        const float bend = glm::length((ends[1].uv - 0.5f * (ends[0].uv + ends[2].uv)) * size);
+        int pieces = 1;
+        while (pieces < kMaxSweptPieces && bend > 0.25f * spacing * float(pieces * pieces)) pieces *= 2;
+        glm::vec2 from = ends[0].uv;
+        bool hasFrom = true;
+        for (int k = 1; k <= pieces; ++k) {
+            glm::vec2 to = ends[2].uv;
+            bool hasTo = true;
+            if (2 * k == pieces) to = ends[1].uv;
+            else if (k < pieces) hasTo = point.uvAt(window.timeBetween(t0, t1, float(k) / float(pieces)), to);
+            if (hasFrom && hasTo) {
+                const float f = (float(k) - 0.5f) / float(pieces);
+                TextureFootprint footprint{duvdxAt(f), duvdyAt(f)};
+                footprint.sweep = to - from;
+                footprint.tapsPerWidth = settings.tapsPerTexel;
+                // A still piece is an instant's lookup; a moving one as many taps as its path asks.
+                if (footprint.sweep != glm::vec2(0.0f)) footprint.maxAnisotropy = std::max(Texture::kMaxAnisotropy, settings.maxTextureTaps);
+                accumulate(texture.sample(0.5f * (from + to), footprint), f, 1.0f);
+            }
+            from = to, hasFrom = hasTo;
+        }
+        return result();
     }
-    if (weightSum == 0.0f) return {glm::vec3(0.0f), 0.0f};
-    const float scale = 1.0f / weightSum;
-    return {material.baseColor * glm::vec3(vertexColor) * sum * scale + specularSum * scale, alphaSum * scale};
+
+    // A shared shading's box counts only the texels of the triangle its samples see, and each
+    // time as much as the triangle covers of the box then: the pixel sees the triangle's colour
+    // over time in proportion to its coverage. A time at which no tap is inside still counts a
+    // little, so a span never loses all its weight.
+    const std::array<glm::vec2, 3>* clipTo = isBox ? point.uvTriangle() : nullptr;
+    constexpr float kLeastCoverage = 1e-3f;
+    for (int i = 0; i < taps; ++i) {
+        const float f = (float(i) + 0.5f) / float(taps);
+        glm::vec2 uv = ends[1].uv;
+        // (The middle tap's uv is the middle end's, unless a clipped box wants it not held.)
+        if ((clipTo || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
+        const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, isBox, clipTo};
+        float weight = 1.0f;
+        const glm::vec4 texel = clipTo ? texture.sampleBox(uv, footprint, &weight) : texture.sample(uv, footprint);
+        accumulate(texel, f, std::max(weight, kLeastCoverage));
+    }
+    return result();
 }
 
 }  // namespace streak::exposure

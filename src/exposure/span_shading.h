@@ -2,10 +2,13 @@
 
 #include "scene/shading.h"
 #include "scene/shutter.h"
+#include "util/options.h"
+#include "util/stats.h"
 
 #include <glm/vec2.hpp>
 
 #include <array>
+#include <string>
 
 namespace streak::exposure {
 
@@ -43,14 +46,37 @@ protected:
     ~MovingSurfacePoint() = default;
 };
 
+// How a span integrates its texture along the uv path the point sweeps.
+enum class SpanTextureFilter {
+    // Taps along the path, each its own lookup of the footprint at its own time: the footprint's
+    // taps times the path's (Hong & Oh's k taps, made anisotropic).
+    Taps,
+    // One lookup per straight piece of the path, of the footprint swept along the piece: the
+    // ellipse whose covariance is the footprint's plus the piece's (J J^T + d d^T; Loviscach
+    // 2005's motion-blurred texture lookup), its taps along the major axis as any anisotropic
+    // lookup's. A box along the path convolved with the footprint becomes a box of equal variance:
+    // the same mean and spread, a softer shape; the cost is one lookup where Taps takes as many as
+    // the path is texels long. Masked materials (AlphaMode::Mask) keep the taps: their cutoff
+    // applies to each point's alpha, which one lookup would average first.
+    Swept,
+};
+
 // How finely a span is sampled.
 struct SpanShadingSettings {
     int maxTextureTaps = 16;       ///< Hong & Oh's k: at most k texture taps along the span
     float tapsPerTexel = 2.0f;     ///< taps per texel of the footprint's mip level along the uv path
     float maxTurnPerTap = 0.4f;    ///< radians the reflected ray may turn between lighting taps
     int maxLightingTaps = 16;
+    SpanTextureFilter textureFilter = SpanTextureFilter::Swept;
     ShutterWindow window;          ///< the sample's row of the shutter: taps are even in its exposure
 };
+
+// The exact methods' span-shading options: `texture-samples` (32, Hong & Oh's k),
+// `taps-per-texel` (2) and `texture-filter=swept|taps` (SpanTextureFilter; swept: against Cycles
+// at 1024x768 it scores as high or higher in less time, docs/BENCHMARKS.md).
+SpanShadingSettings spanShadingSettings(OptionMap& options, const std::string& method);
+// Records them: texture_samples, taps_per_texel and the texture_filter (info) in --stats.
+void recordSpanShadingSettings(RenderStats& stats, const SpanShadingSettings& settings);
 
 // The mean shaded colour (and opacity) of a point over [t0, t1] of the shutter: the colour of
 // an interval in motion-path and analytic. Texture and lighting are averaged with their own
@@ -61,6 +87,9 @@ struct SpanShadingSettings {
 //   rises to (path length / k) as in the paper. Each tap's level follows the footprint over the
 //   span (a quadratic through its ends and middle), so a face turning edge-on blurs as it does
 //   under the reference.
+//   With SpanTextureFilter::Swept the path is cut where it bends (its middle off the chord by more
+//   than a quarter of the footprint's tap width; at most kMaxSweptPieces pieces) and each piece
+//   takes one lookup of the footprint at its middle time, swept along it.
 // - Lighting (Phong): Simpson's rule on the span's ends and middle, or more taps where the
 //   reflected ray turns by more than maxTurnPerTap per tap; each texture tap's albedo is lit by
 //   the lighting terms interpolated to its time.
@@ -69,6 +98,7 @@ struct SpanShadingSettings {
 // sit at even steps of exposure (ShutterWindow::timeBetween), not of time.
 //
 // Returns black with alpha 0 when the point cannot be evaluated at the span's ends or middle.
+constexpr int kMaxSweptPieces = 8;
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings = {});
 

@@ -138,14 +138,15 @@ glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const { return triline
 namespace {
 
 // The ellipse of a footprint in texels: the singular values of J = [a b] (the eigenvalues of
-// J J^T are their squares) and the major axis, scaled to its length.
+// J J^T are their squares) and the major axis, scaled to its length. Swept along d, the
+// eigenvalues of J J^T + d d^T.
 struct FootprintEllipse {
     float major = 0.0f, minor = 0.0f;
     glm::vec2 majorAxis{0.0f};
 };
 
-FootprintEllipse footprintEllipse(const glm::vec2& a, const glm::vec2& b) {
-    const float p = a.x * a.x + b.x * b.x, q = a.x * a.y + b.x * b.y, r = a.y * a.y + b.y * b.y;
+FootprintEllipse footprintEllipse(const glm::vec2& a, const glm::vec2& b, const glm::vec2& d = glm::vec2(0.0f)) {
+    const float p = a.x * a.x + b.x * b.x + d.x * d.x, q = a.x * a.y + b.x * b.y + d.x * d.y, r = a.y * a.y + b.y * b.y + d.y * d.y;
     const float mean = 0.5f * (p + r), spread = std::sqrt(0.25f * (p - r) * (p - r) + q * q);
     FootprintEllipse e;
     e.major = std::sqrt(std::max(mean + spread, 0.0f));
@@ -206,10 +207,13 @@ private:
 glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
     if (footprint.isBox) return sampleBox(uv, footprint);
     const glm::vec2 size{float(width()), float(height())};
-    const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size);
+    const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size, footprint.sweep * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
-    const float width = std::max(tapWidth(e, kMaxAnisotropy), std::exp2(std::max(footprint.minLod, 0.0f)));
-    const int taps = std::clamp(int(std::ceil(e.major / width - 1e-3f)), 1, kMaxAnisotropy);
+    const int maxTaps = std::max(footprint.maxAnisotropy, 1);
+    const float width = std::max(tapWidth(e, maxTaps), std::exp2(std::max(footprint.minLod, 0.0f)));
+    // The sweep's share of the major axis takes tapsPerWidth taps per width, the rest one.
+    const float extraTaps = (std::max(footprint.tapsPerWidth, 1.0f) - 1.0f) * glm::length(footprint.sweep * size);
+    const int taps = std::clamp(int(std::ceil((e.major + extraTaps) / width - 1e-3f)), 1, maxTaps);
     const float lod = width > 0.0f ? std::log2(width) : 0.0f;
     if (taps == 1) return trilinearAt(uv, lod);
     const glm::vec2 step = e.majorAxis / size / float(taps);  // uv between taps

@@ -11,6 +11,9 @@
 
 namespace streak {
 
+// A GPU's anisotropic limit: taps a lookup spends along its footprint's major axis at most.
+inline constexpr int kDefaultMaxAnisotropy = 16;
+
 // How uv outside [0,1] maps onto a texture axis (the glTF sampler modes).
 enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
 
@@ -37,6 +40,18 @@ struct TextureFootprint {
     float minLod = 0.0f;
     bool isBox = false;
     const std::array<glm::vec2, 3>* clipTo = nullptr;
+    // The footprint swept along a straight uv segment (span shading's motion): the lookup's
+    // ellipse is the one of covariance J J^T + sweep sweep^T, J = [duvdx duvdy], the box of the
+    // segment convolved with the footprint's taken as one of equal variance (Loviscach 2005's
+    // motion-blurred lookup). Not for a box.
+    glm::vec2 sweep{0.0f};
+    // The most taps a lookup spends along its major axis (Texture::kMaxAnisotropy, a GPU's 16x),
+    // past which its taps widen: a footprint swept along a uv path is as long as the path.
+    int maxAnisotropy = kDefaultMaxAnisotropy;
+    // Taps per tap width along the sweep: the taps must resolve the sweep's box (span shading's
+    // taps per texel), where the footprint's own extent takes a GPU's one per width. Without a
+    // sweep the lookup is a GPU's whatever this says.
+    float tapsPerWidth = 1.0f;
 };
 
 // Texture is a linear-light RGBA texture with its full mip chain, built once at load time.
@@ -65,9 +80,9 @@ public:
     // Trilinear: lod 0 is the full-resolution level; clamped to the chain.
     glm::vec4 sample(const glm::vec2& uv, float lod) const;
     // Anisotropic: the footprint's ellipse (the singular vectors of [duvdx duvdy] in texels)
-    // covered by up to kMaxAnisotropy trilinear taps along its major axis, each at the level of
+    // covered by up to footprint.maxAnisotropy (kMaxAnisotropy unless asked) trilinear taps along its major axis, each at the level of
     // the minor axis, so a surface seen at a slant stays sharp across its compressed direction.
-    static constexpr int kMaxAnisotropy = 16;
+    static constexpr int kMaxAnisotropy = kDefaultMaxAnisotropy;
     glm::vec4 sample(const glm::vec2& uv, const TextureFootprint& footprint) const;
     // The box filter (TextureFootprint::isBox): a grid of bilinear taps over the parallelogram,
     // at most kMaxBoxTaps, at the finest level whose texels are no narrower than the taps' spacing,

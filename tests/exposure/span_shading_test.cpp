@@ -70,8 +70,13 @@ TEST(ShadeTimeSpan, AStillPointShadesAsAnInstantDoes) {
             SurfacePoint instant;
             ASSERT_TRUE(point.at(0.5f, true, instant));
             const ShadedColor still = shadeSurface(scene, ShadingMode::Unlit, instant, glm::vec3(0.0f, 0.0f, 1.0f));
-            const ShadedColor span = shadeTimeSpan(scene, ShadingMode::Unlit, 0.2f, 0.9f, point);
-            EXPECT_NEAR(span.color.x, still.color.x, 1e-6f) << "scale " << scale << " uv " << uv.x << "," << uv.y;
+            for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+                SpanShadingSettings settings;
+                settings.textureFilter = filter;
+                const ShadedColor span = shadeTimeSpan(scene, ShadingMode::Unlit, 0.2f, 0.9f, point, settings);
+                EXPECT_NEAR(span.color.x, still.color.x, 1e-6f)
+                    << "scale " << scale << " uv " << uv.x << "," << uv.y << " swept " << (filter == SpanTextureFilter::Swept);
+            }
         }
     }
 }
@@ -83,15 +88,20 @@ TEST(ShadeTimeSpan, MeanOfALinearRampAlongAStraightPath) {
     const Scene scene = rampScene();
     ScriptedPoint point;
     point.uv = [](float t) { return glm::vec2(0.2f + 0.5f * t, 0.5f); };
-    for (int k : {1, 4, 16}) {
+    for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+        for (int k : {1, 4, 16}) {
+            SpanShadingSettings settings;
+            settings.maxTextureTaps = k;
+            settings.textureFilter = filter;
+            const ShadedColor c = shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings);
+            EXPECT_NEAR(c.color.x, 0.45f, 2e-3f) << "k " << k;
+            EXPECT_FLOAT_EQ(c.alpha, 1.0f);
+        }
+        // A sub-span: [0.5, 1] covers u in [0.45, 0.7].
         SpanShadingSettings settings;
-        settings.maxTextureTaps = k;
-        const ShadedColor c = shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings);
-        EXPECT_NEAR(c.color.x, 0.45f, 2e-3f) << "k " << k;
-        EXPECT_FLOAT_EQ(c.alpha, 1.0f);
+        settings.textureFilter = filter;
+        EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.5f, 1.0f, point, settings).color.x, 0.575f, 2e-3f);
     }
-    // A sub-span: [0.5, 1] covers u in [0.45, 0.7].
-    EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.5f, 1.0f, point).color.x, 0.575f, 2e-3f);
 }
 
 TEST(ShadeTimeSpan, TapsFollowTheTimeParameterisationNotTheStraightLine) {
@@ -102,7 +112,91 @@ TEST(ShadeTimeSpan, TapsFollowTheTimeParameterisationNotTheStraightLine) {
     point.uv = [](float t) { return glm::vec2(0.2f + 0.6f * t * t, 0.5f); };
     SpanShadingSettings settings;
     settings.maxTextureTaps = 64;
+    settings.textureFilter = SpanTextureFilter::Taps;
     EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).color.x, 0.4f, 2e-3f);
+    // The swept lookups follow it piece by piece: the path bends by 38 texels, so it is cut into
+    // kMaxSweptPieces straight pieces of equal time, each the ramp at its chord's middle (the
+    // trapezoid rule of u(t): 0.2 + 0.6 (1/3 + 1/(6 * 8^2)) = 0.4016). One straight lookup over
+    // the whole path would be the straight line's 0.5.
+    settings.textureFilter = SpanTextureFilter::Swept;
+    EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).color.x, 0.4016f, 1e-3f);
+}
+
+namespace {
+
+// A 256 x 256 texture whose red is a cosine of u with a period of `period` texels (mean 1/2,
+// amplitude 1/2), constant along v; repeating.
+Scene cosineScene(int period) {
+    Scene scene = test::emptyScene();
+    std::vector<glm::vec4> texels(256 * 256);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x)
+            texels[std::size_t(y) * 256 + x] = glm::vec4(0.5f + 0.5f * std::cos(2.0f * 3.14159265f * (float(x) + 0.5f) / float(period)), 0, 0, 1);
+    scene.textures.push_back(Texture::fromLinear(256, 256, std::move(texels)));
+    const std::uint32_t m = test::addMaterial(scene, glm::vec3(1.0f));
+    scene.materials[m].baseColorTexture = 0;
+    return scene;
+}
+
+}  // namespace
+
+TEST(ShadeTimeSpan, SweptLookupIsTheBoxMeanAlongThePath) {
+    // A point sweeping L texels of a cosine of period P at constant speed, at an angle to it, with
+    // a footprint of a quarter texel (magnified: the filter is the path alone). Its time mean is
+    // closed form: the cosine at the path's middle damped by sinc(L_u / P), L_u the path's extent
+    // along u. The swept lookup (a box of the path's variance) and the taps both follow it, at
+    // dampings from 0.9 down to 0.2 and a sign flip.
+    const int period = 32;
+    const Scene scene = cosineScene(period);
+    for (const float length : {8.0f, 16.0f, 24.0f, 40.0f}) {
+        for (const float angle : {0.0f, 0.5f, 1.0f}) {
+            const glm::vec2 along = glm::vec2(std::cos(angle), std::sin(angle)) * length / 256.0f;
+            const glm::vec2 middle(0.37f, 0.52f);
+            ScriptedPoint point;
+            point.uv = [=](float t) { return middle + (t - 0.5f) * along; };
+            point.footprint = glm::vec2(0.25f / 256.0f, 0.0f);
+            const float x = length * std::cos(angle) / float(period), pi = 3.14159265f;
+            const float damping = x == 0.0f ? 1.0f : std::sin(pi * x) / (pi * x);
+            const float expected = 0.5f + 0.5f * damping * std::cos(2.0f * pi * middle.x * 256.0f / float(period));
+            for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+                SpanShadingSettings settings;
+                settings.textureFilter = filter;
+                const float got = shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).color.x;
+                EXPECT_NEAR(got, expected, 0.03f) << "L " << length << " angle " << angle << " swept " << (filter == SpanTextureFilter::Swept);
+            }
+        }
+    }
+}
+
+TEST(ShadeTimeSpan, SweptLookupKeepsTheContrastAcrossItsPath) {
+    // Stripes along the motion: a path of 24 texels along v over a cosine of u of period 8 texels,
+    // with a footprint of one texel. Across the path nothing moves, so the stripes keep the
+    // contrast an instant's lookup gives them (cosine peak and trough): the swept ellipse is long
+    // along the path and as narrow as the footprint across it. A lookup as wide as the path is
+    // long (an isotropic one at its length) would leave under a tenth of it. (With 16 taps, both
+    // filters widen to 1.5 texels across: 0.83 of the contrast.)
+    const Scene scene = cosineScene(8);
+    auto shadeAt = [&](float u, SpanTextureFilter filter) {
+        ScriptedPoint point;
+        point.uv = [=](float t) { return glm::vec2(u, 0.2f + t * 24.0f / 256.0f); };
+        point.footprint = glm::vec2(1.0f / 256.0f, 0.0f);
+        SpanShadingSettings settings;
+        settings.maxTextureTaps = 32;  // the methods' default: a tap per texel of the path
+        settings.textureFilter = filter;
+        return shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).color.x;
+    };
+    ScriptedPoint still;
+    still.footprint = glm::vec2(1.0f / 256.0f, 0.0f);
+    for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+        // Texel centres 0 and 4 are the peak and the trough.
+        still.uv = [](float) { return glm::vec2(0.5f / 256.0f, 0.3f); };
+        const float stillPeak = shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, still).color.x;
+        still.uv = [](float) { return glm::vec2(4.5f / 256.0f, 0.3f); };
+        const float stillTrough = shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, still).color.x;
+        const float contrast = shadeAt(0.5f / 256.0f, filter) - shadeAt(4.5f / 256.0f, filter);
+        ASSERT_GT(stillPeak - stillTrough, 0.9f);
+        EXPECT_GT(contrast, 0.95f * (stillPeak - stillTrough)) << "swept " << (filter == SpanTextureFilter::Swept);
+    }
 }
 
 TEST(ShadeTimeSpan, LightingOfATurningNormalMatchesABruteForceMean) {
@@ -148,11 +242,18 @@ TEST(ShadeTimeSpan, OpacityIsTheMeanTextureAlphaTimesTheMaterials) {
     ScriptedPoint point;
     point.uv = [](float t) { return glm::vec2(t, 0.5f); };
     point.footprint = glm::vec2(1.0f / 64.0f, 0.0f);
-    EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point).alpha, 0.25f, 0.02f);
-    // Mask at cutoff 0.5: each tap's alpha is 0 or 1 (0.5 * 1 passes, 0.5 * 0 does not), so
-    // the span's alpha is the coverage, 0.5.
-    scene.materials[m].alphaMode = AlphaMode::Mask;
-    EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point).alpha, 0.5f, 0.04f);
+    for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+        SpanShadingSettings settings;
+        settings.textureFilter = filter;
+        scene.materials[m].alphaMode = AlphaMode::Blend;
+        EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).alpha, 0.25f, 0.02f);
+        // Mask at cutoff 0.5: each tap's alpha is 0 or 1 (0.5 * 1 passes, 0.5 * 0 does not), so
+        // the span's alpha is the coverage, 0.5. (One swept lookup would average the alpha to
+        // 0.5 first and cut all of it: a mask keeps the taps.)
+        scene.materials[m].alphaMode = AlphaMode::Mask;
+        EXPECT_NEAR(shadeTimeSpan(scene, ShadingMode::Unlit, 0.0f, 1.0f, point, settings).alpha, 0.5f, 0.04f)
+            << "swept " << (filter == SpanTextureFilter::Swept);
+    }
 }
 
 }  // namespace streak::exposure

@@ -34,8 +34,8 @@ struct FootprintEllipse {
     vec2 majorAxis;
 };
 
-FootprintEllipse footprintEllipse(vec2 a, vec2 b) {
-    float p = a.x * a.x + b.x * b.x, q = a.x * a.y + b.x * b.y, r = a.y * a.y + b.y * b.y;
+FootprintEllipse footprintEllipse(vec2 a, vec2 b, vec2 d) {
+    float p = a.x * a.x + b.x * b.x + d.x * d.x, q = a.x * a.y + b.x * b.y + d.x * d.y, r = a.y * a.y + b.y * b.y + d.y * d.y;
     float mean = 0.5 * (p + r), spread = sqrt(0.25 * (p - r) * (p - r) + q * q);
     FootprintEllipse e;
     e.major = sqrt(max(mean + spread, 0.0));
@@ -45,14 +45,17 @@ FootprintEllipse footprintEllipse(vec2 a, vec2 b) {
     return e;
 }
 
-// Texture::sample(uv, TextureFootprint): up to 16 trilinear taps along the major axis of the
-// footprint's ellipse, each at the level of the minor axis (and not below minLod, nor level 0).
-vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
+// Texture::sample(uv, TextureFootprint): up to maxTaps trilinear taps along the major axis of
+// the ellipse of the footprint swept along `sweep` (zero: not swept), each at the level of the
+// minor axis (and not below minLod, nor level 0): one per width, tapsPerWidth per width along
+// the sweep.
+vec4 sampleSweptFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 sweep, float minLod, int maxTaps, float tapsPerWidth) {
     vec2 size = textureSizeOf(index);
-    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
+    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size, sweep * size);
     if (isinf(e.major) || isnan(e.major)) return sampleTexture(index, uv, 1000.0);
-    float width = max(max(e.minor, e.major / 16.0), exp2(max(minLod, 0.0)));
-    int taps = clamp(int(ceil(e.major / width - 1e-3)), 1, 16);
+    float width = max(max(e.minor, e.major / float(maxTaps)), exp2(max(minLod, 0.0)));
+    float extraTaps = (max(tapsPerWidth, 1.0) - 1.0) * length(sweep * size);
+    int taps = clamp(int(ceil((e.major + extraTaps) / width - 1e-3)), 1, maxTaps);
     float lod = width > 0.0 ? log2(width) : 0.0;
     if (taps == 1) return sampleTexture(index, uv, lod);
     vec2 step = e.majorAxis / size / float(taps);
@@ -61,10 +64,14 @@ vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
     return sum / float(taps);
 }
 
+vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
+    return sampleSweptFootprint(index, uv, duvdx, duvdy, vec2(0.0), minLod, 16, 1.0);
+}
+
 // Texture::finestLodOfFootprint: the level of the anisotropic taps.
 float finestLodOfFootprint(int index, vec2 duvdx, vec2 duvdy) {
     vec2 size = textureSizeOf(index);
-    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size);
+    FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size, vec2(0.0));
     float width = max(e.minor, e.major / 16.0);
     return width > 0.0 ? log2(width) : 0.0;
 }

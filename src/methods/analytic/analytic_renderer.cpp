@@ -40,8 +40,7 @@ struct Options {
     bool tileCull = true;  ///< skip the tiles, and the samples of a box, a segment stays outside
     bool hullCull = true;  ///< and a moving segment's samples beyond its swept hull (with tileCull)
     bool checkDepthOrder = false;
-    int textureSamples = 32;
-    float tapsPerTexel = 2.0f;
+    exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
 };
 
@@ -70,8 +69,7 @@ public:
         {
             PhaseTimer timer(context.stats, "setup");
             frame.segmented.emplace(scene, viewport, m_options.curveSegments);
-            frame.spanShading.maxTextureTaps = m_options.textureSamples;
-            frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
+            frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
         raster::TileGrid grid(viewport, kTileSize);
@@ -102,6 +100,7 @@ public:
                                      m_options.resolve.shading);
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setInfo("simd", simd::levelName(frame.simd));
+        exposure::recordSpanShadingSettings(stats, m_options.spanShading);
         stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
         exposure::recordSegmentPlan(stats, frame.segmented->segmentPlan());
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
@@ -347,8 +346,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.hullCull = options.getInt("hull-cull", 1, 0, 1) != 0;
     o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
-    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
-    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.spanShading = exposure::spanShadingSettings(options, "analytic");
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.resolve.shading = exposure::pixelShadingOptions(options, "analytic");
     return std::make_unique<AnalyticRenderer>(o);

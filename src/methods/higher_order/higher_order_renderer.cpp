@@ -41,8 +41,7 @@ struct Options {
     double depthTolerance = 1e-3;
     exposure::ExactResolveOptions resolve;
     int checkVisibility = 0;
-    int textureSamples = 32;
-    float tapsPerTexel = 2.0f;
+    exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
 };
 
 struct Counters {
@@ -68,8 +67,7 @@ public:
         {
             PhaseTimer timer(context.stats, "setup");
             frame.geometry.emplace(scene, float(settings.width) / float(settings.height), m_options.cameraOrder);
-            frame.spanShading.maxTextureTaps = m_options.textureSamples;
-            frame.spanShading.tapsPerTexel = m_options.tapsPerTexel;
+            frame.spanShading = m_options.spanShading;
             frame.numBoxes = m_options.traversal == Traversal::Interval ? m_options.intervals : 1;
             frame.boxes = frame.geometry->screenBounds(viewport, frame.numBoxes);
             frame.bounds.resize(frame.geometry->segments().size());
@@ -115,6 +113,7 @@ public:
                                      m_options.resolve.maxIntervals, m_options.resolve.shading);
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setCounter("motion_order", frame.geometry->order());
+        exposure::recordSpanShadingSettings(stats, m_options.spanShading);
         stats.setCounter("motion_fitted", frame.geometry->isFitted() ? 1.0 : 0.0);
         stats.setCounter("pieces_per_triangle", frame.geometry->numPieces());
         stats.setCounter("curved_segments", double(frame.bounds.size()));
@@ -394,8 +393,7 @@ std::unique_ptr<Renderer> createHigherOrderRenderer(OptionMap& options) {
     o.resolve.maxIntervals = options.getInt("max-intervals", 0, 0, 1 << 16);
     o.checkVisibility = options.getInt("check-visibility", 0, 0, 20000);
     o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
-    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
-    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.spanShading = exposure::spanShadingSettings(options, "higher-order");
     o.resolve.shading = exposure::pixelShadingOptions(options, "higher-order");
     return std::make_unique<HigherOrderRenderer>(o);
 }

@@ -45,10 +45,9 @@ struct Options {
     // polyline depth, before the sort (with exact weights only: the GL twin's slices keep one
     // interval per segment, as the paper does).
     bool mergeSegments = true;
-    int textureSamples = 16;
     bool sortIntervals = true;
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
-    float tapsPerTexel = 2.0f;
+    exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     exposure::PixelShadingOptions shading;
 };
 
@@ -183,8 +182,7 @@ public:
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
         stats.setCounter("exact_weights", m_options.exactWeights ? 1 : 0);
-        stats.setCounter("texture_samples", m_options.textureSamples);
-        stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
+        exposure::recordSpanShadingSettings(stats, m_options.spanShading);
         exposure::recordSegmentPlan(stats, frame.segmented.segmentPlan());
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
@@ -201,10 +199,7 @@ private:
             : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
               pattern(raster::samplePatternFor(settings.aa, settings.isGridPattern)),
               segmented(scene, raster::Viewport{settings.width, settings.height}, options.curveSegments),
-              geometry(segmented.flat()), paths(segmented.segments()) {
-            spanShading.maxTextureTaps = options.textureSamples;
-            spanShading.tapsPerTexel = options.tapsPerTexel;
-        }
+              geometry(segmented.flat()), paths(segmented.segments()), spanShading(options.spanShading) {}
 
         // Paths are binned by their screen boxes and built into faces tile by tile, so memory
         // stays one box per path however many triangles the scene has.
@@ -563,10 +558,9 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.mergeSegments = options.getInt("merge-segments", 1, 0, 1) != 0;
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
-    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
-    o.tapsPerTexel = float(options.getInt("taps-per-texel", 2, 1, 16));
+    o.spanShading = exposure::spanShadingSettings(options, "motion-path");
     o.shading = exposure::pixelShadingOptions(options, "motion-path");
     return std::make_unique<MotionPathRenderer>(o);
 }

@@ -1,6 +1,7 @@
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
 
 #include "exposure/segmented_geometry.h"
+#include "exposure/span_shading.h"
 #include "gpu/fragment_lists.h"
 #include "gpu/gl_context.h"
 #include "gpu/gpu_timer.h"
@@ -24,8 +25,7 @@ struct Options {
     int maxFragments = 150;
     int maxIntervals = 90;
     int maskBits = 128;
-    int textureSamples = 32;
-    int tapsPerTexel = 2;
+    exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter (the shaders' uniforms)
     bool sortIntervals = true;
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     int gpuMemoryMb = 1024;
@@ -71,8 +71,9 @@ public:
         for (GLuint program : {paths.id(), resolve.id()}) setInt(program, "u_numSegments", numSegments);
         setInt(resolve.id(), "u_maskBits", m_options.maskBits);
         setInt(resolve.id(), "u_sortIntervals", m_options.sortIntervals ? 1 : 0);
-        setInt(resolve.id(), "u_textureSamples", m_options.textureSamples);
-        glProgramUniform1f(resolve.id(), glGetUniformLocation(resolve.id(), "u_tapsPerTexel"), float(m_options.tapsPerTexel));
+        setInt(resolve.id(), "u_textureSamples", m_options.spanShading.maxTextureTaps);
+        glProgramUniform1f(resolve.id(), glGetUniformLocation(resolve.id(), "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
+        setInt(resolve.id(), "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
 
         const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
         const gpu::GlFramebuffer framebuffer;  // no attachments: pass 1 writes only its lists
@@ -164,8 +165,7 @@ public:
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
-        stats.setCounter("texture_samples", m_options.textureSamples);
-        stats.setCounter("taps_per_texel", m_options.tapsPerTexel);
+        exposure::recordSpanShadingSettings(stats, m_options.spanShading);
         exposure::recordSegmentPlan(stats, plan);
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
         return image;
@@ -185,8 +185,7 @@ std::unique_ptr<Renderer> createMotionPathGlRenderer(OptionMap& options) {
     o.maskBits = options.getInt("mask-bits", 128, 32, 256);
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path-gl': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
-    o.textureSamples = options.getInt("texture-samples", 32, 1, 1024);
-    o.tapsPerTexel = options.getInt("taps-per-texel", 2, 1, 16);
+    o.spanShading = exposure::spanShadingSettings(options, "motion-path-gl");
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.gpuMemoryMb = options.getInt("gpu-memory", 1024, 1, 1 << 20);

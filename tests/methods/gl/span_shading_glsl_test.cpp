@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
+#include <tuple>
 #include <vector>
 
 namespace streak {
@@ -26,15 +28,16 @@ struct ShadingProbe {
 };
 static_assert(sizeof(ShadingProbe) == 32);
 
-class SpanShadingGlsl : public testing::TestWithParam<std::string> {};
+class SpanShadingGlsl : public testing::TestWithParam<std::tuple<std::string, exposure::SpanTextureFilter>> {};
 
 TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
-    const Scene scene = makeBuiltinScene(GetParam(), {});
+    const Scene scene = makeBuiltinScene(std::get<0>(GetParam()), {});
     const int width = 96, height = 72, curveSegments = 4;
     const ShadingMode shading = ShadingMode::Phong;
     exposure::SpanShadingSettings settings;
     settings.maxTextureTaps = 32;
     settings.tapsPerTexel = 2.0f;
+    settings.textureFilter = std::get<1>(GetParam());
 
     // Every inside span of every segment at every pixel centre (up to a budget).
     const exposure::SegmentedGeometry segmented(scene, raster::Viewport{width, height}, curveSegments);
@@ -69,6 +72,8 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_numSegments"), segmented.numSegments());
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_textureSamples"), settings.maxTextureTaps);
     glProgramUniform1f(program.id(), glGetUniformLocation(program.id(), "u_tapsPerTexel"), settings.tapsPerTexel);
+    glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_sweptTexture"),
+                       settings.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
     const gpu::GlBuffer input = gpu::GlBuffer::from(probes);
     const gpu::GlBuffer output(probes.size() * sizeof(glm::vec4));
     input.bindStorage(10);
@@ -98,7 +103,9 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     EXPECT_EQ(mismatches, 0) << "of " << probes.size() << "; worst " << worst;
 }
 
-INSTANTIATE_TEST_SUITE_P(BuiltinScenes, SpanShadingGlsl, testing::Values("rotating-cube", "twist", "pan", "translucent", "cubes"));
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, SpanShadingGlsl,
+                         testing::Combine(testing::Values("rotating-cube", "twist", "pan", "translucent", "cubes"),
+                                          testing::Values(exposure::SpanTextureFilter::Swept, exposure::SpanTextureFilter::Taps)));
 
 }  // namespace
 }  // namespace streak

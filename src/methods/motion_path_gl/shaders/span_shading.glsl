@@ -7,6 +7,8 @@
 uniform int u_numSegments;  // linear segments per triangle
 uniform int u_textureSamples;
 uniform float u_tapsPerTexel;
+uniform int u_sweptTexture;  // SpanTextureFilter::Swept: one lookup per straight piece of the uv path
+const int kMaxSweptPieces = 8;
 const float kMaxTurnPerTap = 0.4;
 const int kMaxLightingTaps = 16;
 
@@ -163,16 +165,41 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     int numTaps = clamp(int(ceil(u_tapsPerTexel * pathTexels / spacing)), 1, u_textureSamples);
     float pathLod = log2(max(pathTexels / float(u_textureSamples), 1e-8));
 
+    // Swept: the path cut where it bends (its middle off the chord by more than a quarter tap
+    // width, a quarter of that per halving), one lookup of the footprint swept along each piece.
+    int pieces = 1;
+    bool swept = u_sweptTexture != 0 && mat.info.y != 1;  // a mask keeps the taps
+    if (swept) {
+        float bend = length((ends[1].uv - 0.5 * (ends[0].uv + ends[2].uv)) * size);
+        while (pieces < kMaxSweptPieces && bend > 0.25 * spacing * float(pieces * pieces)) pieces *= 2;
+        numTaps = pieces;
+    }
+    vec2 from = ends[0].uv;
+    bool hasFrom = true;
+
     vec3 sum = vec3(0.0), specularSum = vec3(0.0);
     float alphaSum = 0.0;
     int used = 0;
     for (int i = 0; i < numTaps; ++i) {
         float f = (float(i) + 0.5) / float(numTaps);
         vec2 uv = ends[1].uv;
-        if (2 * i + 1 != numTaps && !uvAt(point, timeBetween(g_window, t0, t1, f), uv)) continue;
+        vec2 sweep = vec2(0.0);
+        if (swept) {
+            vec2 to = ends[2].uv;
+            bool hasTo = true;
+            if (2 * (i + 1) == pieces) to = ends[1].uv;
+            else if (i + 1 < pieces) hasTo = uvAt(point, timeBetween(g_window, t0, t1, float(i + 1) / float(pieces)), to);
+            bool hasPiece = hasFrom && hasTo;
+            uv = 0.5 * (from + to);
+            sweep = to - from;
+            from = to;
+            hasFrom = hasTo;
+            if (!hasPiece) continue;
+        } else if (2 * i + 1 != numTaps && !uvAt(point, timeBetween(g_window, t0, t1, f), uv)) continue;
         vec2 duvdx = quadraticThrough(vec3(ends[0].duvdx, 0.0), vec3(ends[1].duvdx, 0.0), vec3(ends[2].duvdx, 0.0), f).xy;
         vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
-        vec4 texel = sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
+        vec4 texel = swept ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, sweep == vec2(0.0) ? 16 : max(16, u_textureSamples), u_tapsPerTexel)
+                                         : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
         if (lit) {
             vec3 diffuse, specular;
             if (lightingTaps <= 3) {
