@@ -30,7 +30,6 @@ constexpr double kSeenNdc = 1.5;
 // NDC distances grow without bound and say nothing of the image.
 double pieceDeviation(const Scene& scene, const raster::Viewport& viewport, int numSegments) {
     const float aspect = float(viewport.width) / float(viewport.height);
-    const double pixelsPerNdc = 0.5 * double(viewport.height);
     std::size_t numVertices = 0;
     for (const Mesh& mesh : scene.meshes) numVertices += mesh.numVertices();
     const std::size_t stride = std::max<std::size_t>(1, numVertices / kMaxProbeVertices);
@@ -55,8 +54,7 @@ double pieceDeviation(const Scene& scene, const raster::Viewport& viewport, int 
                 if (!(linear.w > scene.camera.zNear) || !(truth.w > scene.camera.zNear)) continue;
                 const glm::dvec2 seen = glm::dvec2(truth) / truth.w;
                 if (!(std::abs(seen.x) <= kSeenNdc && std::abs(seen.y) <= kSeenNdc)) continue;
-                const glm::dvec2 d = (glm::dvec2(linear) / linear.w - seen) * pixelsPerNdc;
-                const double pixels = std::hypot(d.x * aspect, d.y);
+                const double pixels = Camera::pixelsOfNdc(glm::dvec2(linear) / linear.w - seen, aspect, double(viewport.height));
                 if (std::isfinite(pixels)) worst = std::max(worst, pixels);
             }
             first += n;

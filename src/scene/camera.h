@@ -2,7 +2,10 @@
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+
+#include <cmath>
 
 namespace streak {
 
@@ -39,6 +42,13 @@ struct Camera {
     // aspect = width / height of the image.
     glm::mat4 clipFromView(float aspect) const;
     glm::mat4 clipFromWorld(float t, float aspect) const { return clipFromView(aspect) * viewFromWorld(t); }
+    // The length in pixels of an NDC displacement on an image imageHeight pixels tall and aspect
+    // times as wide: NDC spans the image's height and width in 2 units each. How far apart two
+    // projections of a point are (the key and curve choosers' deviations).
+    static double pixelsOfNdc(const glm::dvec2& ndcDelta, double aspect, double imageHeight) {
+        const glm::dvec2 d = ndcDelta * (0.5 * imageHeight);
+        return std::hypot(d.x * aspect, d.y);
+    }
 };
 
 }  // namespace streak

@@ -611,7 +611,6 @@ private:
     double keyDeviation(const std::vector<PosedInstances>& keys, const std::vector<PosedInstances>& middles) const {
         const int numSegments = int(middles.size());
         const float aspect = m_options.aspect;
-        const double pixelsPerNdc = 0.5 * double(m_options.imageHeight);
         double worst = 0.0;
         for (int k = 0; k < numSegments; ++k) {
             const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
@@ -623,8 +622,8 @@ private:
                     const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
                     const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
                     if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
-                    const glm::dvec2 d = glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w) * pixelsPerNdc;
-                    const double pixels = std::hypot(d.x * aspect, d.y);
+                    const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
+                                                              aspect, double(m_options.imageHeight));
                     if (std::isfinite(pixels)) worst = std::max(worst, pixels);
                 }
             }
