@@ -20,7 +20,7 @@ spp ladder; the table gives both times (streak's render time, least of --repeats
 render time, scene sync and BVH included, one render per rung) and their ratio.
 
 Built-in scenes (cubes, fence) are exported with `streak export` and take part when --models
-names them; `--models hd --width 1024 --height 768` is issue 33's 1024x768 yardstick (CesiumMan,
+names them, as does ToyCarTurningCamera (issue 32's camera move); `--models hd --width 1024 --height 768` is issue 33's 1024x768 yardstick (CesiumMan,
 Fox, ToyCar, AnimatedCube, BoxAnimated, cubes, fence).
 
 Usage: bench/ground_truth_bench.py [--models Fox,CesiumMan] [--methods motion-path,motion-path:shading=sample]
@@ -60,10 +60,12 @@ MODELS = [
     ("ToyCar", "ToyCar/glTF/ToyCar.gltf", {}),  # static, its first glTF camera
     ("MetalRoughSpheresNoTextures", "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", {}),
 ]
-# Built-in scenes, exported with `streak export` for Cycles (bench/cycles_reference.py): chosen by
-# name in --models, never by default. `--models hd` is issue 33's 1024x768 subset, where magnified
-# and minified textures both occur.
-BUILTINS = [("cubes", "builtin:cubes", {}), ("fence", "builtin:fence", {})]
+# Scenes chosen by name in --models, never by default: the built-in scenes, exported with `streak
+# export` for Cycles (bench/cycles_reference.py), and ToyCar under issue 32's turning camera move.
+# `--models hd` is issue 33's 1024x768 subset, where magnified and minified textures both occur.
+EXTRAS = [("cubes", "builtin:cubes", {}), ("fence", "builtin:fence", {}),
+          ("ToyCarTurningCamera", "ToyCar/glTF/ToyCar.gltf",
+           {"camera-pos": "0,0.15,0.35", "camera-target": "0,0.05,0", "camera-pos-end": "0.2,0.15,0.3"})]
 HD_MODELS = "CesiumMan,Fox,ToyCar,AnimatedCube,BoxAnimated,cubes,fence"
 STREAK_FLAGS = ["--aa", "8", "--shading", "unlit", "--background", "0,0,0"]
 
@@ -144,7 +146,7 @@ def earlier_renders(out, job, spp_list):
 def selection(args):
     """The models, methods and Cycles ladder (spp) the command line chose."""
     names = (HD_MODELS if args.models == "hd" else args.models).split(",") if args.models else []
-    chosen = [m for m in MODELS + BUILTINS if m in MODELS and not names or m[0] in names]
+    chosen = [m for m in MODELS + EXTRAS if m in MODELS and not names or m[0] in names]
     methods = args.methods.split(",") if args.methods else cpu_methods(args.streak)
     ladder_spp = [int(s) for s in args.ladder.split(",")] if args.ladder else []
     return chosen, methods, ladder_spp
@@ -231,7 +233,7 @@ def main():
     parser.add_argument("--streak", default=cycles_reference.STREAK)
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--models", default="",
-                        help="comma-separated model names, the shared models' or cubes, fence (built-in scenes); hd: "
+                        help="comma-separated model names: the shared models', cubes, fence (built-in scenes), ToyCarTurningCamera; hd: "
                              f"{HD_MODELS} (default: every shared model)")
     parser.add_argument("--methods", default="",
                         help="comma-separated methods, each NAME or NAME:key=value;... with method options (default: every CPU method)")
