@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 namespace streak {
@@ -604,44 +605,76 @@ private:
         return out;
     }
 
-    // The largest screen distance, in pixels of an image options.imageHeight tall, between the
-    // animation at the middle of each key segment and the keys' linear interpolation there,
-    // seen through the scene's camera at that time. Camera motion is not counted: every method
-    // follows the camera itself.
-    double keyDeviation(const std::vector<PosedInstances>& keys, const std::vector<PosedInstances>& middles) const {
+    // How far the keys' linear interpolation strays from the animation at the middle of each key
+    // segment, seen through the scene's camera at that time, in pixels of an image
+    // options.imageHeight tall. Camera motion is not counted: every method follows the camera
+    // itself.
+    struct KeyDeviation {
+        double screen = 0.0;  ///< on screen: the largest distance between the two projections
+        // In depth, where a surface can pass in front of another: the largest error along the
+        // view axis, in the pixels it would span across the view at that distance. Two surfaces
+        // passing through each other along the view axis barely move on screen, yet which one
+        // shows changes when their depths cross; keys that miss the depths by d put the crossing
+        // where the depth gap is d. Counted for the instances whose screen boxes over the shutter
+        // meet another instance's (not a lone mesh's folds).
+        double depth = 0.0;
+        double worst() const { return std::max(screen, depth); }
+    };
+    KeyDeviation keyDeviation(const std::vector<PosedInstances>& keys, const std::vector<PosedInstances>& middles) const {
         const int numSegments = int(middles.size());
         const float aspect = m_options.aspect;
-        double worst = 0.0;
-        for (int k = 0; k < numSegments; ++k) {
-            const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
-            for (std::size_t i = 0; i < m_instances.size(); ++i) {
-                const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
-                const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
-                const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
-                for (std::size_t v = 0; v < m.size(); ++v) {
-                    const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
-                    const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
-                    if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
-                    const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
-                                                              aspect, double(m_options.imageHeight));
-                    if (std::isfinite(pixels)) worst = std::max(worst, pixels);
+        const double pixelsPerView = 0.5 * double(m_options.imageHeight) / std::tan(0.5 * double(m_scene.camera.verticalFov));
+        // The NDC boxes each instance's true positions cover over the shutter.
+        std::vector<glm::dvec4> boxes(m_instances.size(), glm::dvec4(1e300, 1e300, -1e300, -1e300));
+        auto forEachVertex = [&](auto&& visit) {
+            for (int k = 0; k < numSegments; ++k) {
+                const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
+                for (std::size_t i = 0; i < m_instances.size(); ++i) {
+                    const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
+                    const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
+                    const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
+                    for (std::size_t v = 0; v < m.size(); ++v) {
+                        const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
+                        const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
+                        if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
+                        visit(i, lin, truth);
+                    }
                 }
             }
-        }
+        };
+        forEachVertex([&](std::size_t i, const glm::vec4&, const glm::vec4& truth) {
+            const glm::dvec2 ndc = glm::dvec2(truth.x / truth.w, truth.y / truth.w);
+            boxes[i] = glm::dvec4(std::min(boxes[i].x, ndc.x), std::min(boxes[i].y, ndc.y), std::max(boxes[i].z, ndc.x), std::max(boxes[i].w, ndc.y));
+        });
+        std::vector<char> canBeHidden(m_instances.size(), 0);
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            for (std::size_t j = i + 1; j < boxes.size(); ++j)
+                if (boxes[i].x <= boxes[j].z && boxes[j].x <= boxes[i].z && boxes[i].y <= boxes[j].w && boxes[j].y <= boxes[i].w)
+                    canBeHidden[i] = canBeHidden[j] = 1;
+        KeyDeviation worst;
+        forEachVertex([&](std::size_t i, const glm::vec4& lin, const glm::vec4& truth) {
+            const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
+                                                      aspect, double(m_options.imageHeight));
+            if (std::isfinite(pixels)) worst.screen = std::max(worst.screen, pixels);
+            if (!canBeHidden[i]) return;
+            const double depth = std::abs(double(lin.w) - double(truth.w)) / double(truth.w) * pixelsPerView;
+            if (std::isfinite(depth)) worst.depth = std::max(worst.depth, depth);
+        });
         return worst;
     }
 
     // The key poses: options.motionKeys evenly spaced keys, or, with motionKeys 0, 2, 3, 5, 9...
     // keys (each level adds the middles of the last, so every coarser key stays a key and the
     // pieces of exact methods stay exact) until the keys stay within options.keyTolerancePixels
-    // of the animation on screen, or the cap (maxMotionKeys, the vertex-work limit) is reached.
+    // of the animation on screen and, where surfaces can pass in front of others, in depth
+    // (KeyDeviation), or the cap (maxMotionKeys, the vertex-work limit) is reached.
     void sampleKeys() {
         std::vector<PosedInstances> keys;
         for (int k = 0; k < m_numKeys; ++k) keys.push_back(poseAt(keyTime(k, m_numKeys), keys.empty() ? nullptr : &keys.back()));
         m_openPoses = keys.front().nodes;
         m_closePoses = keys.back().nodes;
         const bool isAdaptive = m_options.motionKeys == 0;
-        double deviation = -1.0;
+        std::optional<KeyDeviation> deviation;
         if (isAdaptive && m_options.shutter > 0.0 && !m_instances.empty()) {
             writeMeshes(keys);
             placeCamera();  // the deviation is measured through it
@@ -652,7 +685,7 @@ private:
                 std::vector<PosedInstances> middles;
                 for (int k = 0; k + 1 < numKeys; ++k) middles.push_back(poseAt(keyTime(2 * k + 1, 2 * numKeys - 1), &keys[std::size_t(k)]));
                 deviation = keyDeviation(keys, middles);
-                if (deviation <= m_options.keyTolerancePixels || std::size_t(2 * numKeys - 1) > cap) break;
+                if (deviation->worst() <= m_options.keyTolerancePixels || std::size_t(2 * numKeys - 1) > cap) break;
                 std::vector<PosedInstances> refined;
                 for (int k = 0; k < numKeys; ++k) {
                     refined.push_back(std::move(keys[std::size_t(k)]));
@@ -664,7 +697,14 @@ private:
         writeMeshes(keys);
         if (m_stats) {
             m_stats->setCounter("motion_keys", double(keys.size()));
-            if (deviation >= 0.0) m_stats->setCounter("motion_key_deviation_px", deviation);
+            if (deviation) {
+                m_stats->setCounter("motion_key_deviation_px", deviation->screen);
+                m_stats->setCounter("motion_key_depth_deviation_px", deviation->depth);
+                // What set the count: the screen paths, what depth does to visibility, or the cap.
+                m_stats->setInfo("motion_keys_chosen_by", deviation->worst() > m_options.keyTolerancePixels ? "cap"
+                                                          : deviation->depth > deviation->screen       ? "depth"
+                                                                                                       : "screen");
+            }
         }
     }
 

@@ -2,6 +2,7 @@
 
 #include "scene/scene_loader.h"
 #include "support/gltf_builder.h"
+#include "support/gltf_samples.h"
 #include "support/shared_scenes.h"
 #include "util/error.h"
 
@@ -532,6 +533,32 @@ TEST(GltfLoader, BezierKeysFollowARotationByLeastSquaresOrThroughThePoses) {
     // Least squares needs Bezier keys and more poses than keys.
     options.motionFitSamples = 3;
     EXPECT_THROW(load(b, options), Error);
+}
+
+}  // namespace streak
+
+namespace streak {
+
+TEST(GltfLoader, DefaultKeysBoundTheDepthWhereSurfacesCanPassInFrontOfEachOther) {
+    // Two quads passing through each other along the view axis: their corners move a tenth of a
+    // pixel on screen, but their depths swing 2 pixels' worth (0.005 at 3 units, through yfov 0.2,
+    // 240 pixels tall), so the keys are chosen by depth (17). Alone, the same quad is chosen by
+    // its screen path and takes 5: a lone surface's depth error hides nothing.
+    GltfOptions options;
+    options.shutter = 24.0;
+    options.imageHeight = 240;
+    RenderStats both, alone;
+    const Scene two = load(test::quadsThroughEachOther(2), options, &both);
+    const Scene one = load(test::quadsThroughEachOther(1), options, &alone);
+    EXPECT_EQ(both.info().at("motion_keys_chosen_by"), "depth");
+    EXPECT_EQ(alone.info().at("motion_keys_chosen_by"), "screen");
+    EXPECT_EQ(alone.counter("motion_key_depth_deviation_px"), 0.0);
+    EXPECT_GT(two.meshes[0].numKeys, 2 * one.meshes[0].numKeys);
+    EXPECT_LE(both.counter("motion_key_depth_deviation_px"), options.keyTolerancePixels);
+    EXPECT_LE(both.counter("motion_key_deviation_px"), options.keyTolerancePixels);
+    std::printf("together %d keys (depth %.3f px, screen %.3f px); alone %d keys (screen %.3f px)\n", two.meshes[0].numKeys,
+                both.counter("motion_key_depth_deviation_px"), both.counter("motion_key_deviation_px"), one.meshes[0].numKeys,
+                alone.counter("motion_key_deviation_px"));
 }
 
 }  // namespace streak

@@ -86,4 +86,42 @@ inline GltfBuilder morphingStripWithCamera() {
     return b;
 }
 
+// Two square quads facing a camera 3 units away (through a narrow lens, yfov 0.2), red and
+// green, slightly offset so both show, oscillating along the view axis in opposite phase
+// (z = -3 -+ 0.005 sin(3 pi t)) over the first second (65 LINEAR keys, at t = k / 64): they pass
+// through each other at t = 1/3 and 2/3, and which one shows flips there, while on screen
+// their corners move by a tenth of a pixel of 240. With `quads` 1, only the red one.
+inline GltfBuilder quadsThroughEachOther(int quads = 2) {
+    using nlohmann::json;
+    GltfBuilder b;
+    b.json()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.1, 0.1, 1}}}}},
+                             {{"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.8, 0.2, 1}}}}}};
+    const int times = [&] {
+        std::vector<float> t;
+        for (int k = 0; k <= 64; ++k) t.push_back(float(k) / 64.0f);
+        return b.addFloats(t, "SCALAR", 1);
+    }();
+    json animation;
+    for (int q = 0; q < quads; ++q) {
+        const float x = q == 0 ? -0.02f : 0.02f, y = q == 0 ? -0.015f : 0.015f, h = 0.12f;
+        json primitive = {{"material", q}};
+        primitive["attributes"]["POSITION"] = b.addFloats({x - h, y - h, 0, x + h, y - h, 0, x + h, y + h, 0, x - h, y + h, 0}, "VEC3", 3);
+        primitive["indices"] = b.addIndices({0, 1, 2, 0, 2, 3});
+        const int node = b.addMeshNode(primitive);
+        std::vector<float> path;
+        const float sign = q == 0 ? 1.0f : -1.0f;
+        for (int k = 0; k <= 64; ++k) {
+            const float t = float(k) / 64.0f;
+            path.insert(path.end(), {0.0f, 0.0f, -3.0f + sign * 0.005f * float(std::sin(3.0 * 3.14159265358979 * double(t)))});
+        }
+        animation["samplers"].push_back({{"input", times}, {"output", b.addFloats(path, "VEC3", 3)}});
+        animation["channels"].push_back({{"sampler", q}, {"target", {{"node", node}, {"path", "translation"}}}});
+    }
+    b.json()["animations"] = json::array({animation});
+    b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.2}, {"znear", 0.01}}}}};
+    b.json()["nodes"].push_back({{"camera", 0}});
+    b.addToScene(int(b.json()["nodes"].size() - 1));
+    return b;
+}
+
 }  // namespace streak::test
