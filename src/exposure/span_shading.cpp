@@ -153,13 +153,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const glm::vec2 size(float(texture.width()), float(texture.height()));
     std::array<float, 3> footprintLod{};
     for (int i = 0; i < 3; ++i) footprintLod[i] = texture.finestLodOfFootprint(ends[i].duvdx, ends[i].duvdy);
-    // The uv path's length in texels along its longer axis, through the middle.
-    const glm::vec2 a = glm::abs(ends[1].uv - ends[0].uv) * size, b = glm::abs(ends[2].uv - ends[1].uv) * size;
-    const float pathTexels = std::max(a.x + b.x, a.y + b.y);
     const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
-    const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
-    // The level the path's length asks for (k taps along it; the lookup keeps level 0 as floor).
-    const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
     // The footprint moves along the span with the surface: quadratic through its three ends.
     const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);
     const QuadraticThrough<glm::vec2> duvdyAt(ends[0].duvdy, ends[1].duvdy, ends[2].duvdy);
@@ -206,8 +200,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
                 TextureFootprint footprint{duvdxAt(f), duvdyAt(f)};
                 footprint.sweep = to - from;
                 footprint.tapsPerWidth = settings.tapsPerTexel;
-                // A still piece is an instant's lookup; a moving one as many taps as its path asks.
-                if (footprint.sweep != glm::vec2(0.0f)) footprint.maxAnisotropy = std::max(Texture::kMaxAnisotropy, settings.maxTextureTaps);
+                footprint.maxSweptTaps = std::max(Texture::kMaxAnisotropy, settings.maxTextureTaps);
                 accumulate(texture.sample(0.5f * (from + to), footprint), f, 1.0f);
             }
             from = to, hasFrom = hasTo;
@@ -219,6 +212,12 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     // time as much as the triangle covers of the box then: the pixel sees the triangle's colour
     // over time in proportion to its coverage. A time at which no tap is inside still counts a
     // little, so a span never loses all its weight.
+    // The uv path's length in texels along its longer axis, through the middle.
+    const glm::vec2 a = glm::abs(ends[1].uv - ends[0].uv) * size, b = glm::abs(ends[2].uv - ends[1].uv) * size;
+    const float pathTexels = std::max(a.x + b.x, a.y + b.y);
+    const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
+    // The level the path's length asks for (k taps along it; the lookup keeps level 0 as floor).
+    const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
     const std::array<glm::vec2, 3>* clipTo = isBox ? point.uvTriangle() : nullptr;
     constexpr float kLeastCoverage = 1e-3f;
     for (int i = 0; i < taps; ++i) {

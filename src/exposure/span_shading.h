@@ -60,6 +60,7 @@ enum class SpanTextureFilter {
     // applies to each point's alpha, which one lookup would average first.
     Swept,
 };
+constexpr int kMaxSweptPieces = 8;  ///< straight pieces a Swept span's path is cut into at most
 
 // How finely a span is sampled.
 struct SpanShadingSettings {
@@ -73,7 +74,7 @@ struct SpanShadingSettings {
 
 // The exact methods' span-shading options: `texture-samples` (32, Hong & Oh's k),
 // `taps-per-texel` (2) and `texture-filter=swept|taps` (SpanTextureFilter; swept: against Cycles
-// at 1024x768 it scores as high or higher in less time, docs/BENCHMARKS.md).
+// at 1024x768 it reaches each quality at the same --aa in less time, docs/BENCHMARKS.md).
 SpanShadingSettings spanShadingSettings(OptionMap& options, const std::string& method);
 // Records them: texture_samples, taps_per_texel and the texture_filter (info) in --stats.
 void recordSpanShadingSettings(RenderStats& stats, const SpanShadingSettings& settings);
@@ -98,7 +99,6 @@ void recordSpanShadingSettings(RenderStats& stats, const SpanShadingSettings& se
 // sit at even steps of exposure (ShutterWindow::timeBetween), not of time.
 //
 // Returns black with alpha 0 when the point cannot be evaluated at the span's ends or middle.
-constexpr int kMaxSweptPieces = 8;
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings = {});
 

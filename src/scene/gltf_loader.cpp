@@ -624,42 +624,35 @@ private:
         const int numSegments = int(middles.size());
         const float aspect = m_options.aspect;
         const double pixelsPerView = 0.5 * double(m_options.imageHeight) / std::tan(0.5 * double(m_scene.camera.verticalFov));
-        // The NDC boxes each instance's true positions cover over the shutter.
+        // One pass: the screen deviation, and per instance its depth deviation and the NDC box its
+        // true positions cover over the shutter; the depth counts where the boxes meet.
+        KeyDeviation worst;
+        std::vector<double> depths(m_instances.size(), 0.0);
         std::vector<glm::dvec4> boxes(m_instances.size(), glm::dvec4(1e300, 1e300, -1e300, -1e300));
-        auto forEachVertex = [&](auto&& visit) {
-            for (int k = 0; k < numSegments; ++k) {
-                const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
-                for (std::size_t i = 0; i < m_instances.size(); ++i) {
-                    const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
-                    const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
-                    const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
-                    for (std::size_t v = 0; v < m.size(); ++v) {
-                        const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
-                        const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
-                        if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
-                        visit(i, lin, truth);
-                    }
+        for (int k = 0; k < numSegments; ++k) {
+            const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
+            for (std::size_t i = 0; i < m_instances.size(); ++i) {
+                const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
+                const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
+                const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
+                for (std::size_t v = 0; v < m.size(); ++v) {
+                    const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
+                    const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
+                    if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
+                    const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
+                                                              aspect, double(m_options.imageHeight));
+                    if (std::isfinite(pixels)) worst.screen = std::max(worst.screen, pixels);
+                    const double depth = std::abs(double(lin.w) - double(truth.w)) / double(truth.w) * pixelsPerView;
+                    if (std::isfinite(depth)) depths[i] = std::max(depths[i], depth);
+                    const glm::dvec2 ndc = glm::dvec2(truth.x / truth.w, truth.y / truth.w);
+                    boxes[i] = glm::dvec4(glm::min(glm::dvec2(boxes[i]), ndc), glm::max(glm::dvec2(boxes[i].z, boxes[i].w), ndc));
                 }
             }
-        };
-        forEachVertex([&](std::size_t i, const glm::vec4&, const glm::vec4& truth) {
-            const glm::dvec2 ndc = glm::dvec2(truth.x / truth.w, truth.y / truth.w);
-            boxes[i] = glm::dvec4(std::min(boxes[i].x, ndc.x), std::min(boxes[i].y, ndc.y), std::max(boxes[i].z, ndc.x), std::max(boxes[i].w, ndc.y));
-        });
-        std::vector<char> canBeHidden(m_instances.size(), 0);
+        }
         for (std::size_t i = 0; i < boxes.size(); ++i)
             for (std::size_t j = i + 1; j < boxes.size(); ++j)
                 if (boxes[i].x <= boxes[j].z && boxes[j].x <= boxes[i].z && boxes[i].y <= boxes[j].w && boxes[j].y <= boxes[i].w)
-                    canBeHidden[i] = canBeHidden[j] = 1;
-        KeyDeviation worst;
-        forEachVertex([&](std::size_t i, const glm::vec4& lin, const glm::vec4& truth) {
-            const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
-                                                      aspect, double(m_options.imageHeight));
-            if (std::isfinite(pixels)) worst.screen = std::max(worst.screen, pixels);
-            if (!canBeHidden[i]) return;
-            const double depth = std::abs(double(lin.w) - double(truth.w)) / double(truth.w) * pixelsPerView;
-            if (std::isfinite(depth)) worst.depth = std::max(worst.depth, depth);
-        });
+                    worst.depth = std::max({worst.depth, depths[i], depths[j]});
         return worst;
     }
 

@@ -209,7 +209,8 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size, footprint.sweep * size);
     if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
-    const int maxTaps = std::max(footprint.maxAnisotropy, 1);
+    const bool isSwept = footprint.sweep != glm::vec2(0.0f);
+    const int maxTaps = isSwept ? std::max(footprint.maxSweptTaps, 1) : kMaxAnisotropy;
     const float width = std::max(tapWidth(e, maxTaps), std::exp2(std::max(footprint.minLod, 0.0f)));
     // The sweep's share of the major axis takes tapsPerWidth taps per width, the rest one.
     const float extraTaps = (std::max(footprint.tapsPerWidth, 1.0f) - 1.0f) * glm::length(footprint.sweep * size);

@@ -43,14 +43,15 @@ struct TextureFootprint {
     // The footprint swept along a straight uv segment (span shading's motion): the lookup's
     // ellipse is the one of covariance J J^T + sweep sweep^T, J = [duvdx duvdy], the box of the
     // segment convolved with the footprint's taken as one of equal variance (Loviscach 2005's
-    // motion-blurred lookup). Not for a box.
+    // motion-blurred lookup). Not for a box. Without a sweep the lookup is a GPU's, whatever the
+    // two fields after this one say.
     glm::vec2 sweep{0.0f};
-    // The most taps a lookup spends along its major axis (Texture::kMaxAnisotropy, a GPU's 16x),
-    // past which its taps widen: a footprint swept along a uv path is as long as the path.
-    int maxAnisotropy = kDefaultMaxAnisotropy;
+    // The most taps a swept lookup spends along its major axis, past which its taps widen: a
+    // footprint swept along a uv path is as long as the path (an unswept one takes a GPU's
+    // Texture::kMaxAnisotropy).
+    int maxSweptTaps = kDefaultMaxAnisotropy;
     // Taps per tap width along the sweep: the taps must resolve the sweep's box (span shading's
-    // taps per texel), where the footprint's own extent takes a GPU's one per width. Without a
-    // sweep the lookup is a GPU's whatever this says.
+    // taps per texel), where the footprint's own extent takes a GPU's one per width.
     float tapsPerWidth = 1.0f;
 };
 
@@ -80,7 +81,7 @@ public:
     // Trilinear: lod 0 is the full-resolution level; clamped to the chain.
     glm::vec4 sample(const glm::vec2& uv, float lod) const;
     // Anisotropic: the footprint's ellipse (the singular vectors of [duvdx duvdy] in texels)
-    // covered by up to footprint.maxAnisotropy (kMaxAnisotropy unless asked) trilinear taps along its major axis, each at the level of
+    // covered by up to kMaxAnisotropy (footprint.maxSweptTaps when swept) trilinear taps along its major axis, each at the level of
     // the minor axis, so a surface seen at a slant stays sharp across its compressed direction.
     static constexpr int kMaxAnisotropy = kDefaultMaxAnisotropy;
     glm::vec4 sample(const glm::vec2& uv, const TextureFootprint& footprint) const;

@@ -45,11 +45,12 @@ FootprintEllipse footprintEllipse(vec2 a, vec2 b, vec2 d) {
     return e;
 }
 
-// Texture::sample(uv, TextureFootprint): up to maxTaps trilinear taps along the major axis of
-// the ellipse of the footprint swept along `sweep` (zero: not swept), each at the level of the
-// minor axis (and not below minLod, nor level 0): one per width, tapsPerWidth per width along
-// the sweep.
-vec4 sampleSweptFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 sweep, float minLod, int maxTaps, float tapsPerWidth) {
+// Texture::sample(uv, TextureFootprint): trilinear taps along the major axis of the ellipse of
+// the footprint swept along `sweep`, each at the level of the minor axis (and not below minLod,
+// nor level 0): one per width, tapsPerWidth per width along the sweep, at most maxSweptTaps (16
+// without a sweep, a GPU's lookup).
+vec4 sampleSweptFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, vec2 sweep, float minLod, int maxSweptTaps, float tapsPerWidth) {
+    int maxTaps = sweep == vec2(0.0) ? 16 : max(maxSweptTaps, 1);
     vec2 size = textureSizeOf(index);
     FootprintEllipse e = footprintEllipse(duvdx * size, duvdy * size, sweep * size);
     if (isinf(e.major) || isnan(e.major)) return sampleTexture(index, uv, 1000.0);

@@ -198,8 +198,8 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
         } else if (2 * i + 1 != numTaps && !uvAt(point, timeBetween(g_window, t0, t1, f), uv)) continue;
         vec2 duvdx = quadraticThrough(vec3(ends[0].duvdx, 0.0), vec3(ends[1].duvdx, 0.0), vec3(ends[2].duvdx, 0.0), f).xy;
         vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
-        vec4 texel = swept ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, sweep == vec2(0.0) ? 16 : max(16, u_textureSamples), u_tapsPerTexel)
-                                         : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
+        vec4 texel = swept ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, max(16, u_textureSamples), u_tapsPerTexel)
+                           : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
         if (lit) {
             vec3 diffuse, specular;
             if (lightingTaps <= 3) {
