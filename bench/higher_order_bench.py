@@ -11,6 +11,12 @@ Sections (all by default, or pick with --sections):
              320x240, against accumulation 3000 of 64 keys: analytic on 2, 3, 5 and 9 linear keys,
              higher-order on --motion-curve bezier with 3 and 4 keys (the curve through the
              animation at 3 or 4 times, and the least-squares fit to 4n + 1 poses).
+  adaptive   Chosen keys against chosen Bezier pieces (issue 32, item 3): the curved built-ins
+             (spin, clothball, rotating-cube at speeds 1 and 4, cubes) exported as glTF with 64 keys, CesiumMan over 6 frames and Fox
+             running over 4 (each through one fixed camera), 320x240, unlit, --aa 2, against accumulation 3000 of 64 keys: the
+             linear default (analytic), the Bezier default (higher-order, --motion-curve bezier,
+             pieces of degree 2 and 3) and 64 linear keys (analytic): PSNR, keys or pieces, and
+             the render time.
   traversal  The paper's tables on the curved scenes (keys=3 curve=bezier): sample test
              efficiency and time of bounding-box traversal, generalized INTERVAL with 4, 16
              and 64 sub-intervals and TILE with 4x4, 2x2 and 1x1 blocks; TILE's speed-up over
@@ -23,10 +29,11 @@ Times are the "render" phase of --stats, the least of --repeats runs. With --plo
 quality and traversal sections also draw DIR/higher_order_quality.png and
 DIR/higher_order_traversal.png.
 
-usage: bench/higher_order_bench.py [--streak build/streak] [--sections quality,gltf,traversal,solvers,speed] [--repeats 3] [--plot docs]
+usage: bench/higher_order_bench.py [--streak build/streak] [--sections quality,gltf,adaptive,traversal,solvers,speed] [--repeats 3] [--plot docs]
 """
 import os
 import re
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -117,6 +124,47 @@ def gltf(streak, args):
     print()
 
 
+ADAPTIVE_BUILTINS = ["spin", "clothball", "rotating-cube", "rotating-cube?speed=4", "cubes"]
+# A model without a camera is framed from the bounds of its key poses, which differ with the
+# keys; each image here is seen through one camera (the framing of the model's default shutter,
+# from `streak export`), so that only the motion differs.
+CAMERAS = {"CesiumMan": ["--camera-pos=-0.058,0.718,2.386", "--camera-target=-0.058,0.718,0", "--fov", "45"],
+           "Fox (Run)": ["--camera-pos=-9.15,37.26,156.15", "--camera-target=-9.15,37.26,0", "--fov", "45"]}
+
+
+def adaptive(streak, args):
+    print("### Chosen keys against chosen Bezier pieces (320x240, unlit, --aa 2; reference: accumulation 3000 of 64 keys)\n")
+    print("| scene | linear default (analytic): segments, PSNR, ms | Bezier default n = 2 (higher-order): pieces, PSNR, ms "
+          "| n = 3: pieces, PSNR, ms | higher-order on the linear default: ms | 64 linear keys (analytic): PSNR, ms |")
+    print("|---|---|---|---|---:|---|")
+    out, ref = os.path.join(streak.tmp, "ad.exr"), os.path.join(streak.tmp, "ad-ref.exr")
+    scenes = []
+    for name in ADAPTIVE_BUILTINS:
+        glb = os.path.join(streak.tmp, re.sub(r"[^A-Za-z0-9.-]", "_", name) + "-64.glb")
+        subprocess.run([streak.binary, "export", scene(name, 64), glb], check=True)
+        scenes.append((name, glb, ["--frame", "0", "--shutter", "24"]))
+    scenes += [(name, os.path.join(SCENES, path), [*flags, *CAMERAS[name]]) for name, path, flags in MODELS]
+    size = "320x240"
+    for name, model, flags in scenes:
+        streak.render(model, "accumulation", ref, size=size, args=[*flags, *FLAGS, "--samples", "3000", "--motion-keys", "64"], repeats=1)
+
+        def run(method, extra):
+            ms, stats = streak.render(model, method, out, size=size, args=[*flags, *FLAGS, *extra])
+            c = stats["counters"]
+            pieces = c.get("motion_bezier_pieces", c["motion_keys"] - 1)
+            return pieces, streak.psnr(ref, out), ms
+
+        cells = []
+        for method, extra in (("analytic", []), ("higher-order", ["--motion-curve", "bezier"]),
+                              ("higher-order", ["--motion-curve", "bezier", "--motion-curve-order", "3"])):
+            pieces, db, ms = run(method, extra)
+            cells.append(f"{pieces:.0f}, {db:.1f} dB, {ms:.0f}")
+        _, _, ho_linear = run("higher-order", [])
+        _, db, ms = run("analytic", ["--motion-keys", "64"])
+        print(f"| {name} | " + " | ".join(cells) + f" | {ho_linear:.0f} | {db:.1f} dB, {ms:.0f} |", flush=True)
+    print()
+
+
 def traversal(streak, args):
     print("### Traversal: sample test efficiency and time (256x192, unlit, --aa 2, keys=3 curve=bezier)\n")
     options = ["traversal=bbox", "intervals=4", "intervals=16", "intervals=64", "traversal=tile&tile=4", "traversal=tile&tile=2",
@@ -193,4 +241,4 @@ def speed(streak, args):
 
 
 if __name__ == "__main__":
-    run_sections({"quality": quality, "gltf": gltf, "traversal": traversal, "solvers": solvers, "speed": speed}, default_plot="")
+    run_sections({"quality": quality, "gltf": gltf, "adaptive": adaptive, "traversal": traversal, "solvers": solvers, "speed": speed}, default_plot="")

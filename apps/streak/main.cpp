@@ -140,6 +140,7 @@ struct RenderArgs {
     std::optional<int> motionKeys;
     std::optional<std::string> motionCurve;
     std::optional<int> motionFitSamples;
+    std::optional<int> motionCurveOrder;
     std::optional<double> keyTolerance;
     std::optional<int> camera;
     std::optional<std::string> cameraPos;
@@ -157,7 +158,8 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
         {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
-        {"--motion-curve", args.motionCurve.has_value()}, {"--motion-fit-samples", args.motionFitSamples.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
+        {"--motion-curve", args.motionCurve.has_value()}, {"--motion-fit-samples", args.motionFitSamples.has_value()},
+        {"--motion-curve-order", args.motionCurveOrder.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
         {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
@@ -176,6 +178,9 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
         if (*args.motionCurve != "bezier" && *args.motionCurve != "linear") throw Error("--motion-curve must be linear or bezier, got '" + *args.motionCurve + "'");
         options.motionCurve = *args.motionCurve;
     }
+    if (args.motionCurveOrder && (options.motionCurve != "bezier" || args.motionKeys))
+        throw Error("--motion-curve-order takes --motion-curve bezier without --motion-keys (the degree of the chosen pieces)");
+    options.motionCurveOrder = args.motionCurveOrder.value_or(options.motionCurveOrder);
     options.keyTolerancePixels = args.keyTolerance.value_or(options.keyTolerancePixels);
     options.width = args.width;
     options.height = args.height;
@@ -452,7 +457,10 @@ void addGltfFlags(CLI::App* app, RenderArgs& args) {
     app->add_option("--motion-keys", args.motionKeys,
                        "glTF: key poses sampled over the shutter (default: as many as keep the keys within --key-tolerance of the animation, up to 33)");
     app->add_option("--motion-curve", args.motionCurve,
-                       "glTF: linear (piecewise linear keys) or bezier (the keys, 3 or 4, become the control points of the curve through them)");
+                       "glTF: linear (piecewise linear keys) or bezier (curves through the poses: with --motion-keys 3 or 4 one curve; "
+                       "without, as many pieces as keep within --key-tolerance of the animation)");
+    app->add_option("--motion-curve-order", args.motionCurveOrder,
+                       "glTF, --motion-curve bezier without --motion-keys: the degree of the chosen pieces, 2 or 3 (2)");
     app->add_option("--motion-fit-samples", args.motionFitSamples,
                        "glTF, --motion-curve bezier: fit the curve by least squares to N evenly spaced poses (default 4 (K - 1) + 1 for --motion-keys K); 0: the curve through the K poses");
     app->add_option("--key-tolerance", args.keyTolerance, "glTF: screen pixels the chosen motion keys may stray from the animation (0.125)");

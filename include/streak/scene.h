@@ -97,7 +97,8 @@ struct LoadOptions {
     std::string animation;                  ///< --animation: name or index; empty: the first
     std::string shutterPosition = "start";  ///< --shutter-position: start, center or end
     int motionKeys = 0;                     ///< --motion-keys: 2 to 256; 0: as many as --key-tolerance needs
-    std::string motionCurve = "linear";     ///< --motion-curve: linear or bezier (3 or 4 keys)
+    std::string motionCurve = "linear";     ///< --motion-curve: linear or bezier (3 or 4 keys, or pieces chosen)
+    int motionCurveOrder = 2;               ///< --motion-curve-order: the degree of chosen Bezier pieces, 2 or 3
     int motionFitSamples = -1;              ///< --motion-fit-samples: -1: 4 (K - 1) + 1; 0: the curve through the keys
     double keyTolerancePixels = 0.125;      ///< --key-tolerance
     std::optional<int> camera;              ///< --camera: a glTF camera by index

@@ -101,6 +101,7 @@ GltfOptions gltfOptionsOf(const LoadOptions& o) {
     else if (o.motionCurve != "linear") throw Error("motion curve must be linear or bezier, got '" + o.motionCurve + "'");
     if (o.motionFitSamples < -1) throw Error("motion fit samples must be 0 or more (-1: the default), got " + std::to_string(o.motionFitSamples));
     gltf.motionFitSamples = o.motionFitSamples;
+    gltf.bezierOrder = o.motionCurveOrder;
     gltf.keyTolerancePixels = o.keyTolerancePixels;
     gltf.imageHeight = o.height;
     gltf.aspect = float(o.width) / float(o.height);

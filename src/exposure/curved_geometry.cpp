@@ -31,25 +31,25 @@ std::array<T, N> throughSamples(const std::array<T, N>& samples, int order) {
 }  // namespace
 
 CurvedGeometry::CurvedGeometry(const Scene& scene, float aspect, int cameraOrder) : m_flat(scene) {
-    // Pieces: every linear mesh's key segments end on a piece boundary (the least common
-    // multiple of their counts, capped); a Bezier mesh is one curve, cut exactly anywhere.
+    // Pieces: every mesh's key segments (linear keys) or Bezier pieces end on a piece boundary
+    // (the least common multiple of their counts, capped); a Bezier piece is cut exactly
+    // anywhere, so the order is the highest of them.
     int pieces = 1, bezierOrder = 1;
     bool isCapped = false;
+    const auto piecesOf = [](const Mesh& mesh) { return (mesh.numKeys - 1) / mesh.bezierOrder(); };
     for (const Mesh& mesh : scene.meshes) {
-        if (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2) {
-            if (mesh.numKeys - 1 > raster::CurvedTriangle::kMaxOrder)
-                throw Error("method 'higher-order': mesh '" + mesh.name + "' has Bezier keys of order " + std::to_string(mesh.numKeys - 1) +
-                            "; the most is " + std::to_string(raster::CurvedTriangle::kMaxOrder));
-            bezierOrder = std::max(bezierOrder, mesh.numKeys - 1);
-        } else if (!isCapped) {
-            const int next = std::lcm(pieces, mesh.numKeys - 1);
+        if (mesh.bezierOrder() > raster::CurvedTriangle::kMaxOrder)
+            throw Error("method 'higher-order': mesh '" + mesh.name + "' has Bezier keys of order " + std::to_string(mesh.bezierOrder()) +
+                        "; the most is " + std::to_string(raster::CurvedTriangle::kMaxOrder));
+        bezierOrder = std::max(bezierOrder, mesh.bezierOrder());
+        if (!isCapped) {
+            const int next = std::lcm(pieces, piecesOf(mesh));
             if (next > kMaxPieces) isCapped = true;
             else pieces = next;
         }
     }
     if (isCapped)
-        for (const Mesh& mesh : scene.meshes)
-            if (mesh.interpolation == MotionInterpolation::PiecewiseLinear) pieces = std::max(pieces, mesh.numKeys - 1);
+        for (const Mesh& mesh : scene.meshes) pieces = std::max(pieces, piecesOf(mesh));
     // Past the cap some key times fall inside pieces: their paths are then fitted too.
     m_isFitted = !scene.camera.isStatic() || isCapped;
     m_order = m_isFitted ? std::clamp(cameraOrder, 1, raster::CurvedTriangle::kMaxOrder) : bezierOrder;

@@ -31,12 +31,12 @@ struct CurvedSegment {
 };
 
 // CurvedGeometry is a scene's triangles as curved segments: the exact form of Bezier keys
-// (one piece, order keys - 1 <= 3) and of piecewise-linear keys (a piece per key segment, order
-// 1) under a static camera, since projection is linear in homogeneous coordinates. Under a
-// moving camera the clip-space path, object and camera motion together, is fitted per piece
-// by the curve of order cameraOrder through cameraOrder + 1 evenly spaced times of it; so are
-// linear keys whose key segments do not all end on the pieces' ends (the pieces are the least
-// common multiple of the meshes' key segments, at most 64).
+// (a piece per Bezier piece, of its order <= 3) and of piecewise-linear keys (a piece per key
+// segment, order 1) under a static camera, since projection is linear in homogeneous
+// coordinates. Under a moving camera the clip-space path, object and camera motion together,
+// is fitted per piece by the curve of order cameraOrder through cameraOrder + 1 evenly spaced
+// times of it; so are keys whose segments or pieces do not all end on the pieces' ends (the
+// pieces are the least common multiple of the meshes' counts, at most 64).
 // Segments are triangle-major: piece s of triangle i is at i * numPieces + s.
 class CurvedGeometry {
 public:

@@ -71,7 +71,7 @@ SegmentedGeometry::SegmentPlan SegmentedGeometry::plan(const Scene& scene, int c
     bool isCurved = scene.camera.isTurning();
     for (const Mesh& mesh : scene.meshes) {
         maxKeys = std::max(maxKeys, mesh.numKeys);
-        isCurved = isCurved || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
+        isCurved = isCurved || mesh.isCurved();
     }
     const int keySegments = maxKeys - 1;
     SegmentPlan plan;

@@ -55,7 +55,8 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
     for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         maxKeys = std::max(maxKeys, mesh.numKeys);
-        meshes.emplace_back(std::uint32_t(mesh.numKeys), mesh.interpolation == MotionInterpolation::Bezier ? 1u : 0u,
+        // y: the degree of the mesh's Bezier pieces (scene.glsl's motionWeights), 0 for linear keys.
+        meshes.emplace_back(std::uint32_t(mesh.numKeys), mesh.interpolation == MotionInterpolation::Bezier ? std::uint32_t(mesh.bezierOrder()) : 0u,
                             mesh.hasNormals() ? 1u : 0u, 0u);
         const std::uint32_t keyBase = std::uint32_t(keyPositions.size());
         const std::size_t nv = mesh.numVertices();

@@ -11,6 +11,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -149,19 +150,24 @@ private:
         if (!(o.fps > 0.0) || !std::isfinite(o.fps)) throw Error("--fps must be positive");
         if (o.motionKeys != 0 && (o.motionKeys < 2 || o.motionKeys > kMaxMotionKeys))
             throw Error("--motion-keys must be in [2, " + str(kMaxMotionKeys) + "], got " + str(o.motionKeys));
-        if (o.motionCurve == MotionInterpolation::Bezier && o.motionKeys != 3 && o.motionKeys != 4)
-            throw Error("--motion-curve bezier takes --motion-keys 3 or 4 (Bezier order 2 or 3), got " +
-                        (o.motionKeys == 0 ? std::string("none") : str(o.motionKeys)));
-        if (o.motionFitSamples > 0 && (o.motionCurve != MotionInterpolation::Bezier || o.motionFitSamples <= o.motionKeys ||
+        const bool isBezier = o.motionCurve == MotionInterpolation::Bezier;
+        if (isBezier && o.motionKeys != 0 && o.motionKeys != 3 && o.motionKeys != 4)
+            throw Error("--motion-curve bezier takes --motion-keys 3 or 4 (one curve of order 2 or 3), or none (pieces chosen), got " +
+                        str(o.motionKeys));
+        if (isBezier && o.motionKeys == 0 && o.bezierOrder != 2 && o.bezierOrder != 3)
+            throw Error("--motion-curve-order must be 2 or 3, got " + str(o.bezierOrder));
+        if (o.motionFitSamples > 0 && (!isBezier || o.motionKeys == 0 || o.motionFitSamples <= o.motionKeys ||
                                        o.motionFitSamples > kMaxMotionKeys))
-            throw Error("--motion-fit-samples takes --motion-curve bezier and more samples than --motion-keys, at most " +
+            throw Error("--motion-fit-samples takes --motion-curve bezier with --motion-keys and more samples than keys, at most " +
                         str(kMaxMotionKeys) + ", got " + str(o.motionFitSamples));
         if (!(o.keyTolerancePixels > 0.0) || !std::isfinite(o.keyTolerancePixels)) throw Error("--key-tolerance must be a positive number of pixels");
         if (o.imageHeight < 1) throw Error("the image height must be positive");
         if (!(o.aspect > 0.0f) || !std::isfinite(o.aspect)) throw Error("the image aspect ratio must be positive");
         if (o.camera && o.lookAt) throw Error("a glTF camera and an explicit camera cannot both be given");
-        m_numKeys = o.motionKeys == 0 ? 2 : o.motionKeys;  // chosen keys start from two
-        m_fitSamples = o.motionCurve != MotionInterpolation::Bezier ? 0 : o.motionFitSamples < 0 ? 4 * (o.motionKeys - 1) + 1 : o.motionFitSamples;
+        // Chosen keys start from one piece: two keys, or one Bezier piece's.
+        m_pieceOrder = isBezier && o.motionKeys == 0 ? o.bezierOrder : 1;
+        m_numKeys = o.motionKeys == 0 ? m_pieceOrder + 1 : o.motionKeys;
+        m_fitSamples = !isBezier || o.motionKeys == 0 ? 0 : o.motionFitSamples < 0 ? 4 * (o.motionKeys - 1) + 1 : o.motionFitSamples;
         if (m_fitSamples != 0) m_numKeys = m_fitSamples;  // fitted down to motionKeys in curveKeys
     }
 
@@ -605,10 +611,12 @@ private:
         return out;
     }
 
-    // How far the keys' linear interpolation strays from the animation at the middle of each key
-    // segment, seen through the scene's camera at that time, in pixels of an image
-    // options.imageHeight tall. Camera motion is not counted: every method follows the camera
-    // itself.
+    // How far the keys' path strays from the animation at the middle between each two keys, seen
+    // through the scene's camera at that time, in pixels of an image options.imageHeight tall.
+    // The path is the curve of degree m_pieceOrder through each piece's keys: the chords of
+    // linear keys (1), or the Bezier pieces through evenly spaced poses, whose value between
+    // two of them is the polynomial through the piece's poses there. Camera motion is not
+    // counted: every method follows the camera itself.
     struct KeyDeviation {
         double screen = 0.0;  ///< on screen: the largest distance between the two projections
         // In depth, where a surface can pass in front of another: the largest error along the
@@ -629,14 +637,24 @@ private:
         KeyDeviation worst;
         std::vector<double> depths(m_instances.size(), 0.0);
         std::vector<glm::dvec4> boxes(m_instances.size(), glm::dvec4(1e300, 1e300, -1e300, -1e300));
+        const int order = m_pieceOrder;
         for (int k = 0; k < numSegments; ++k) {
             const glm::mat4 clipFromWorld = m_scene.camera.clipFromWorld((float(k) + 0.5f) / float(numSegments), aspect);
+            // The piece's keys, and the Lagrange weights of its polynomial half way after key k.
+            const int first = k / order * order;
+            std::array<float, 4> weight{};
+            for (int j = 0; j <= order; ++j) {
+                double w = 1.0;
+                for (int m = 0; m <= order; ++m)
+                    if (m != j) w *= (double(k - first) + 0.5 - m) / double(j - m);
+                weight[std::size_t(j)] = float(w);
+            }
             for (std::size_t i = 0; i < m_instances.size(); ++i) {
-                const std::vector<glm::vec3>& a = keys[std::size_t(k)].positions[i];
-                const std::vector<glm::vec3>& b = keys[std::size_t(k) + 1].positions[i];
                 const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
                 for (std::size_t v = 0; v < m.size(); ++v) {
-                    const glm::vec4 lin = clipFromWorld * glm::vec4(0.5f * (a[v] + b[v]), 1.0f);
+                    glm::vec3 path = weight[0] * keys[std::size_t(first)].positions[i][v];
+                    for (int j = 1; j <= order; ++j) path += weight[std::size_t(j)] * keys[std::size_t(first + j)].positions[i][v];
+                    const glm::vec4 lin = clipFromWorld * glm::vec4(path, 1.0f);
                     const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
                     if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
                     const double pixels = Camera::pixelsOfNdc(glm::dvec2(lin.x / lin.w - truth.x / truth.w, lin.y / lin.w - truth.y / truth.w),
@@ -658,8 +676,9 @@ private:
 
     // The key poses: options.motionKeys evenly spaced keys, or, with motionKeys 0, 2, 3, 5, 9...
     // keys (each level adds the middles of the last, so every coarser key stays a key and the
-    // pieces of exact methods stay exact) until the keys stay within options.keyTolerancePixels
-    // of the animation on screen and, where surfaces can pass in front of others, in depth
+    // pieces of exact methods stay exact; Bezier pieces of degree n: n + 1, 2n + 1, 4n + 1...
+    // poses, 1, 2, 4... pieces) until the keys stay within options.keyTolerancePixels of the
+    // animation on screen and, where surfaces can pass in front of others, in depth
     // (KeyDeviation), or the cap (maxMotionKeys, the vertex-work limit) is reached.
     void sampleKeys() {
         std::vector<PosedInstances> keys;
@@ -702,15 +721,29 @@ private:
     }
 
     // --motion-curve bezier: the poses become the control points of the curve through them (or
-    // of the least-squares fit to motionFitSamples poses), once the camera has been placed from
-    // the poses (the control points overshoot the motion).
+    // of the least-squares fit to motionFitSamples poses), or of each chosen piece's curve
+    // through its poses, once the camera has been placed from the poses (the control points
+    // overshoot the motion).
     void curveKeys() {
         if (m_options.motionCurve != MotionInterpolation::Bezier) return;
         for (Mesh& mesh : m_scene.meshes) {
             mesh.interpolation = MotionInterpolation::Bezier;
             if (m_fitSamples == 0) {
-                bezierControlPointsThroughSamples(mesh.positions, mesh.numKeys);
-                bezierControlPointsThroughSamples(mesh.normals, mesh.numKeys);
+                // Pieces share their end poses, which their curves keep: each piece converts
+                // its own copy of its poses.
+                const int order = m_options.motionKeys == 0 ? m_pieceOrder : mesh.numKeys - 1;
+                mesh.bezierPieces = (mesh.numKeys - 1) / order;
+                const std::size_t n = mesh.numVertices();
+                for (std::vector<glm::vec3>* keys : {&mesh.positions, &mesh.normals}) {
+                    if (keys->empty()) continue;
+                    const std::vector<glm::vec3> poses = *keys;
+                    for (int p = 0; p < mesh.bezierPieces; ++p) {
+                        const std::size_t first = std::size_t(p * order) * n, count = std::size_t(order + 1) * n;
+                        std::vector<glm::vec3> piece(poses.begin() + std::ptrdiff_t(first), poses.begin() + std::ptrdiff_t(first + count));
+                        bezierControlPointsThroughSamples(piece, order + 1);
+                        std::copy(piece.begin() + std::ptrdiff_t(n), piece.end() - std::ptrdiff_t(n), keys->begin() + std::ptrdiff_t(first + n));
+                    }
+                }
                 continue;
             }
             const int order = m_options.motionKeys - 1;
@@ -721,6 +754,10 @@ private:
         if (m_stats && m_fitSamples != 0) {
             m_stats->setCounter("motion_keys", double(m_options.motionKeys));
             m_stats->setCounter("motion_fit_samples", double(m_fitSamples));
+        }
+        if (m_stats && !m_scene.meshes.empty()) {
+            m_stats->setCounter("motion_bezier_pieces", double(m_scene.meshes.front().bezierPieces));
+            m_stats->setCounter("motion_bezier_order", double(m_scene.meshes.front().bezierOrder()));
         }
     }
 
@@ -840,6 +877,7 @@ private:
     Scene m_scene;
     int m_numKeys = 2;                                               ///< keys sampled first (options.motionKeys, or 2 to refine)
     int m_fitSamples = 0;                                            ///< Bezier keys: poses fitted by least squares (0: through the keys)
+    int m_pieceOrder = 1;                                            ///< chosen keys: the degree of their pieces (1: linear keys)
     std::size_t m_vertexWorkPerKey = 0;                              ///< GltfLimits::maxVertexWork's measure of one key
     std::vector<gltf::Node> m_nodes;
     std::vector<bool> m_isInScene;                                   ///< per node: reachable from the scene's roots

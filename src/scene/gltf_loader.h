@@ -44,12 +44,15 @@ struct GltfOptions {
     std::string animation;      ///< a name, or an index; empty: the first animation, if any
     int motionKeys = 0;         ///< key poses sampled evenly over the shutter, 2 to 256; 0: chosen
                                 ///< per scene (2, 3, 5, 9...) to follow the animation on screen
-    MotionInterpolation motionCurve = MotionInterpolation::PiecewiseLinear;  ///< Bezier: the keys become the control
-                                ///< points of the curve through the motionKeys (3 or 4) samples
+    // Bezier with motionKeys 3 or 4: the keys become the control points of one curve through (or
+    // fitted to) the poses; with motionKeys 0: Bezier pieces of degree bezierOrder through evenly
+    // spaced poses, as many as the animation needs (1, 2, 4, 8...), chosen as linear keys are.
+    MotionInterpolation motionCurve = MotionInterpolation::PiecewiseLinear;
+    int bezierOrder = 2;        ///< chosen Bezier pieces: their degree, 2 or 3
     int motionFitSamples = -1;  ///< Bezier: the least-squares fit to N > motionKeys evenly spaced poses;
                                 ///< -1: N = 4 (motionKeys - 1) + 1 (bench/higher_order_bench.py: closer
                                 ///< to the animation than the curve through motionKeys poses); 0: that curve
-    double keyTolerancePixels = 0.125;  ///< chosen keys: the screen deviation they may leave
+    double keyTolerancePixels = 0.125;  ///< chosen keys or pieces: the screen deviation they may leave
     int maxMotionKeys = 33;             ///< chosen keys: at most this many
     int imageHeight = 768;              ///< pixels, the unit of keyTolerancePixels
     std::optional<int> camera;  ///< a glTF camera (index into cameras); default: the first

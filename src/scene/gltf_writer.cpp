@@ -196,7 +196,7 @@ void buildDocument(const Scene& scene, GlbBuilder& b) {
     for (const Mesh& mesh : scene.meshes) {
         if (mesh.triangles.empty() || mesh.numVertices() == 0) continue;
         const bool moves = !mesh.isStatic();
-        if (moves && mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2)
+        if (moves && mesh.isCurved())
             throw Error("mesh '" + mesh.name + "': Bezier keys cannot be written as glTF morph targets");
         const std::size_t n = mesh.numVertices();
         auto key = [&](const std::vector<glm::vec3>& values, int k) {

@@ -22,6 +22,7 @@ struct Mesh {
     std::string name;
     int numKeys = 2;
     MotionInterpolation interpolation = MotionInterpolation::PiecewiseLinear;
+    int bezierPieces = 1;  ///< Bezier: the curves the keys make, each of degree bezierOrder()
     std::vector<glm::vec3> positions;    ///< world space, numKeys * numVertices
     std::vector<glm::vec3> normals;      ///< same layout as positions, or empty (flat shading)
     std::vector<glm::vec2> uvs;          ///< one per vertex, or empty (uv = 0)
@@ -39,7 +40,11 @@ struct Mesh {
     std::span<const glm::vec3> keyPositions(int key) const {
         return {positions.data() + std::size_t(key) * numVertices(), numVertices()};
     }
-    MotionWeights weightsAt(float t) const { return motionWeights(numKeys, interpolation, t); }
+    // The degree of each Bezier piece (1 for piecewise-linear keys).
+    int bezierOrder() const { return interpolation == MotionInterpolation::Bezier ? (numKeys - 1) / bezierPieces : 1; }
+    // True for Bezier pieces that curve (degree 2 or more).
+    bool isCurved() const { return bezierOrder() > 1; }
+    MotionWeights weightsAt(float t) const { return motionWeights(numKeys, interpolation, t, bezierPieces); }
     glm::vec3 positionAt(std::uint32_t vertex, const MotionWeights& w) const {
         return w.apply(positions.data() + vertex, numVertices());
     }

@@ -8,7 +8,7 @@
 
 namespace streak {
 
-MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t) {
+MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t, int pieces) {
     assert(numKeys >= 2);
     t = std::clamp(t, 0.0f, 1.0f);
     MotionWeights w;
@@ -22,17 +22,21 @@ MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, floa
         w.weights[1] = u;
         return w;
     }
-    assert(numKeys <= MotionWeights::kMaxKeys);
-    // Bernstein basis of degree n = numKeys - 1, built by the de Casteljau recurrence on the
-    // weights themselves: stable for all t in [0,1], unlike powers of t and (1-t).
-    const int n = numKeys - 1;
-    w.first = 0;
-    w.count = numKeys;
+    assert(pieces >= 1 && (numKeys - 1) % pieces == 0 && (numKeys - 1) / pieces < MotionWeights::kMaxKeys);
+    // The piece holding t, and t within it (one piece: t itself, to the bit).
+    const int n = (numKeys - 1) / pieces;
+    const float x = t * float(pieces);
+    const int piece = std::min(int(x), pieces - 1);
+    const float u = x - float(piece);
+    // Bernstein basis of degree n, built by the de Casteljau recurrence on the weights
+    // themselves: stable for all u in [0,1], unlike powers of u and (1-u).
+    w.first = piece * n;
+    w.count = n + 1;
     w.weights[0] = 1.0f;
     for (int degree = 1; degree <= n; ++degree) {
         for (int i = degree; i >= 0; --i) {
-            const float fromLeft = i > 0 ? w.weights[i - 1] * t : 0.0f;
-            const float stay = i < degree ? w.weights[i] * (1.0f - t) : 0.0f;
+            const float fromLeft = i > 0 ? w.weights[i - 1] * u : 0.0f;
+            const float stay = i < degree ? w.weights[i] * (1.0f - u) : 0.0f;
             w.weights[i] = fromLeft + stay;
         }
     }

@@ -13,7 +13,10 @@ namespace streak {
 // spaced in t. K = 2 is linear motion in either mode.
 enum class MotionInterpolation : std::uint8_t {
     PiecewiseLinear,  ///< K-1 linear segments through the keys
-    Bezier,           ///< one Bezier curve of degree K-1 with the keys as control points
+    // P Bezier curves of degree n = (K-1)/P, one per P-th of the shutter, with the keys as
+    // control points; piece p takes keys p n ... p n + n, so neighbours share their joint key and
+    // the path is continuous. P = 1 (the default) is one curve of degree K-1.
+    Bezier,
 };
 
 // MotionWeights is the linear combination of key poses that gives a vertex at one time:
@@ -42,9 +45,10 @@ struct MotionWeights {
     }
 };
 
-// The weights for numKeys keys at shutter time t (clamped to [0,1]). Precondition: numKeys >= 2,
-// and numKeys <= MotionWeights::kMaxKeys for Bezier.
-MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t);
+// The weights for numKeys keys at shutter time t (clamped to [0,1]), Bezier keys in `pieces`
+// pieces. Precondition: numKeys >= 2; for Bezier, pieces divides numKeys - 1 and the degree
+// (numKeys - 1) / pieces is below MotionWeights::kMaxKeys.
+MotionWeights motionWeights(int numKeys, MotionInterpolation interpolation, float t, int pieces = 1);
 
 // Replaces samples of curves at the key times (key-major: numKeys blocks of equal size, as
 // Mesh::positions) by the control points of the Bezier curves of order numKeys - 1 through

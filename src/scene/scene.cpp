@@ -33,8 +33,13 @@ bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v
 void checkMesh(const Mesh& mesh, std::size_t index, const Scene& scene) {
     const std::string where = "mesh " + std::to_string(index) + (mesh.name.empty() ? "" : " '" + mesh.name + "'");
     if (mesh.numKeys < 2) throw Error(where + ": needs at least 2 key poses, has " + std::to_string(mesh.numKeys));
-    if (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > MotionWeights::kMaxKeys)
-        throw Error(where + ": Bezier motion supports at most " + std::to_string(MotionWeights::kMaxKeys) + " keys");
+    if (mesh.interpolation == MotionInterpolation::Bezier) {
+        if (mesh.bezierPieces < 1 || (mesh.numKeys - 1) % mesh.bezierPieces != 0)
+            throw Error(where + ": " + std::to_string(mesh.numKeys) + " Bezier keys do not make " + std::to_string(mesh.bezierPieces) +
+                        " pieces of one degree");
+        if (mesh.bezierOrder() >= MotionWeights::kMaxKeys)
+            throw Error(where + ": Bezier motion supports at most degree " + std::to_string(MotionWeights::kMaxKeys - 1) + " per piece");
+    }
     if (mesh.positions.size() % std::size_t(mesh.numKeys) != 0)
         throw Error(where + ": positions are not a whole number of key poses");
     const std::size_t n = mesh.numVertices();

@@ -135,6 +135,23 @@ TEST(Cli, RepeatReportsTheLastRenderOnly) {
     EXPECT_EQ(three["counters"]["triangle_tests"], one["counters"]["triangle_tests"]);
 }
 
+// --motion-curve bezier without --motion-keys: Bezier pieces chosen by --key-tolerance, of the
+// degree --motion-curve-order gives, reported in --stats. The sliding triangle moves on a line,
+// so one piece follows it exactly.
+TEST(Cli, BezierWithoutKeysChoosesPiecesOfTheGivenDegree) {
+    test::TempDir dir;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string base = "render " + dir.file("triangle.glb") + " -m higher-order --width 32 --height 24 --shutter 12 --motion-curve bezier ";
+    for (const int order : {2, 3}) {
+        const std::string stats = dir.file("s" + std::to_string(order) + ".json");
+        ASSERT_EQ(runStreak(dir, base + "--motion-curve-order " + std::to_string(order) + " -o " + dir.file("out.png") + " --stats " + stats).exitCode, 0);
+        const nlohmann::json counters = nlohmann::json::parse(readFile(stats))["counters"];
+        EXPECT_EQ(counters["motion_bezier_order"], order);
+        EXPECT_EQ(counters["motion_bezier_pieces"], 1);
+        EXPECT_EQ(counters["motion_keys"], order + 1);
+    }
+}
+
 // --shutter-position places the open interval around --frame F: centre opens S/2 frames
 // earlier and end S frames earlier, so the blur is the start-position blur of those frames to
 // the bit (the sliding triangle moves linearly).
@@ -272,7 +289,10 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"unknown curve", "render 'builtin:spin?curve=spline' -o " + out},
         {"unknown traversal", "render builtin:spin -m higher-order --option traversal=tiles -o " + out},
         {"bad tile size", "render builtin:spin -m higher-order --option tile=3 -o " + out},
-        {"glTF bezier without keys", "render " + glb + "--motion-curve bezier -o " + out},
+        {"glTF bezier of 5 keys", "render " + glb + "--motion-curve bezier --motion-keys 5 -o " + out},
+        {"glTF bezier pieces of degree 4", "render " + glb + "--motion-curve bezier --motion-curve-order 4 -o " + out},
+        {"glTF curve order without bezier", "render " + glb + "--motion-curve-order 3 -o " + out},
+        {"glTF curve order with keys", "render " + glb + "--motion-curve bezier --motion-keys 3 --motion-curve-order 3 -o " + out},
         {"glTF fit samples without bezier", "render " + glb + "--motion-keys 3 --motion-fit-samples 9 -o " + out},
         {"negative samples", "render builtin:crossing -m stochastic --samples -3 -o " + out},
         {"zero aa", "render " + ok + "--aa 0 -o " + out},

@@ -451,6 +451,23 @@ test::GltfBuilder quarterTurn() {
     return b;
 }
 
+// The farthest the keyed path of quarterTurn()'s vertex (1, 0, 0) strays on screen from the
+// true turn (cos 90t, sin 90t, 0), over 1001 times, in pixels of an image 240 tall.
+double quarterTurnScreenError(const Scene& scene, float aspect) {
+    const Mesh& mesh = scene.meshes[0];
+    double worst = 0.0;
+    for (int i = 0; i <= 1000; ++i) {
+        const float t = float(i) / 1000.0f;
+        const glm::mat4 clipFromWorld = scene.camera.clipFromWorld(t, aspect);
+        const glm::vec3 keyed = mesh.positionAt(1, mesh.weightsAt(t));
+        const float angle = std::numbers::pi_v<float> / 2 * t;
+        const glm::vec4 a = clipFromWorld * glm::vec4(keyed, 1.0f), b = clipFromWorld * glm::vec4(std::cos(angle), std::sin(angle), 0.0f, 1.0f);
+        const glm::vec2 d = (glm::vec2(a) / a.w - glm::vec2(b) / b.w) * glm::vec2(0.5f * 240.0f * aspect, 0.5f * 240.0f);
+        worst = std::max(worst, double(glm::length(d)));
+    }
+    return worst;
+}
+
 }  // namespace
 
 TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
@@ -471,16 +488,7 @@ TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
     EXPECT_LE(keys, options.maxMotionKeys);
     EXPECT_EQ((keys - 1) & (keys - 2), 0) << "2^m + 1 keys, so coarser keys stay keys";
     EXPECT_LE(stats.counter("motion_key_deviation_px"), options.keyTolerancePixels);
-    double worst = 0.0;
-    for (int i = 0; i <= 1000; ++i) {
-        const float t = float(i) / 1000.0f;
-        const glm::mat4 clipFromWorld = scene.camera.clipFromWorld(t, options.aspect);
-        const glm::vec3 keyed = mesh.positionAt(1, mesh.weightsAt(t));
-        const float angle = std::numbers::pi_v<float> / 2 * t;
-        const glm::vec4 a = clipFromWorld * glm::vec4(keyed, 1.0f), b2 = clipFromWorld * glm::vec4(std::cos(angle), std::sin(angle), 0.0f, 1.0f);
-        const glm::vec2 d = (glm::vec2(a) / a.w - glm::vec2(b2) / b2.w) * glm::vec2(0.5f * 240.0f * options.aspect, 0.5f * 240.0f);
-        worst = std::max(worst, double(glm::length(d)));
-    }
+    const double worst = quarterTurnScreenError(scene, options.aspect);
     EXPECT_LE(worst, options.keyTolerancePixels * 1.05);
     std::printf("%d keys, %.4f px measured, %.4f px by the loader\n", keys, worst, stats.counter("motion_key_deviation_px"));
 
@@ -532,6 +540,54 @@ TEST(GltfLoader, BezierKeysFollowARotationByLeastSquaresOrThroughThePoses) {
     EXPECT_LT(fitted, interpolated);
     // Least squares needs Bezier keys and more poses than keys.
     options.motionFitSamples = 3;
+    EXPECT_THROW(load(b, options), Error);
+}
+
+TEST(GltfLoader, ChosenBezierPiecesFollowARotationWithinTheToleranceInFewerPiecesThanLinearKeys) {
+    // --motion-curve bezier without --motion-keys: quadratic (or cubic) pieces through evenly
+    // spaced poses, 1, 2, 4... of them until they stay within the tolerance of the animation, as
+    // linear keys are chosen. The quarter turn's true path is a circle: the chosen pieces must
+    // follow it within the tolerance at every time, joined where they meet, and take fewer pieces
+    // than the linear keys take segments.
+    test::GltfBuilder b = quarterTurn();
+    GltfOptions options;
+    options.shutter = 24;
+    options.imageHeight = 240;
+    RenderStats linearStats;
+    const int segments = load(b, options, &linearStats).meshes[0].numKeys - 1;
+    EXPECT_EQ(linearStats.info().at("motion_keys_chosen_by"), "screen");  // not the cap
+    options.motionCurve = MotionInterpolation::Bezier;
+    for (const int order : {2, 3}) {
+        options.bezierOrder = order;
+        RenderStats stats;
+        const Scene scene = load(b, options, &stats);
+        const Mesh& mesh = scene.meshes[0];
+        EXPECT_EQ(mesh.interpolation, MotionInterpolation::Bezier);
+        EXPECT_EQ(mesh.bezierOrder(), order);
+        EXPECT_EQ(mesh.numKeys, mesh.bezierPieces * order + 1);
+        EXPECT_EQ(mesh.bezierPieces & (mesh.bezierPieces - 1), 0) << "1, 2, 4... pieces";
+        EXPECT_EQ(stats.counter("motion_bezier_pieces"), double(mesh.bezierPieces));
+        EXPECT_EQ(stats.counter("motion_bezier_order"), double(order));
+        EXPECT_EQ(stats.info().at("motion_keys_chosen_by"), "screen");
+        EXPECT_LE(stats.counter("motion_key_deviation_px"), options.keyTolerancePixels);
+        const double worst = quarterTurnScreenError(scene, options.aspect);
+        EXPECT_LE(worst, options.keyTolerancePixels * 1.25);
+        EXPECT_LT(mesh.bezierPieces, segments);
+        // Each piece passes through the animation at its poses (the curve through them): at the
+        // first piece's first inner pose and at its joint the vertex sits on the circle.
+        for (const float t : {1.0f / float(order * mesh.bezierPieces), 1.0f / float(mesh.bezierPieces)}) {
+            const float angle = std::numbers::pi_v<float> / 2 * t;
+            expectNear(mesh.positionAt(1, mesh.weightsAt(t)), {std::cos(angle), std::sin(angle), 0.0f}, 1e-5f);
+        }
+        std::printf("degree %d: %d pieces (%d keys), %.4f px measured, %.4f px by the loader; linear keys: %d segments (%.4f px)\n", order,
+                    mesh.bezierPieces, mesh.numKeys, worst, stats.counter("motion_key_deviation_px"), segments,
+                    linearStats.counter("motion_key_deviation_px"));
+    }
+    // The degree takes 2 or 3, and --motion-keys with bezier stays one curve of 3 or 4 keys.
+    options.bezierOrder = 4;
+    EXPECT_THROW(load(b, options), Error);
+    options.bezierOrder = 2;
+    options.motionKeys = 5;
     EXPECT_THROW(load(b, options), Error);
 }
 

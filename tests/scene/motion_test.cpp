@@ -60,4 +60,35 @@ TEST(MotionWeights, RandomsArePartitionsOfUnityAndBezierStaysInHull) {
     }
 }
 
+TEST(MotionWeights, BezierPiecesAreEachTheirOwnCurveAndJoinAtTheirSharedKeys) {
+    // Two quadratic pieces on 5 keys: piece 0 is the curve of keys 0-2 over t in [0, 1/2], piece 1
+    // that of keys 2-4 over [1/2, 1], each at its own local time 2t and 2t - 1.
+    const float keys[5] = {1.0f, 5.0f, 3.0f, -2.0f, 4.0f};
+    const auto quadratic = [](const float* p, float u) { return (1 - u) * (1 - u) * p[0] + 2 * u * (1 - u) * p[1] + u * u * p[2]; };
+    for (const float t : {0.0f, 0.1f, 0.3f, 0.45f, 0.5f, 0.55f, 0.8f, 1.0f}) {
+        const MotionWeights w = motionWeights(5, MotionInterpolation::Bezier, t, 2);
+        EXPECT_EQ(w.count, 3);
+        EXPECT_EQ(w.first, t < 0.5f ? 0 : 2);
+        const float expected = t < 0.5f ? quadratic(keys, 2 * t) : quadratic(keys + 2, 2 * t - 1);
+        EXPECT_NEAR(w.apply(keys), expected, 1e-5f) << t;
+    }
+    // Continuous at the joint: both sides meet key 2.
+    EXPECT_NEAR(motionWeights(5, MotionInterpolation::Bezier, std::nextafter(0.5f, 0.0f), 2).apply(keys), 3.0f, 1e-5f);
+    EXPECT_NEAR(motionWeights(5, MotionInterpolation::Bezier, 0.5f, 2).apply(keys), 3.0f, 1e-6f);
+    // One piece is the one curve of before, to the bit.
+    Rng rng(11);
+    for (int trial = 0; trial < 200; ++trial) {
+        const int k = 2 + int(rng.next() % 15);
+        const float t = rng.uniform();
+        const MotionWeights a = motionWeights(k, MotionInterpolation::Bezier, t), b = motionWeights(k, MotionInterpolation::Bezier, t, 1);
+        EXPECT_EQ(a.first, b.first);
+        EXPECT_EQ(a.count, k);
+        for (int i = 0; i < k; ++i) EXPECT_EQ(a.weights[i], b.weights[i]);
+    }
+    // Pieces of degree 1 are the piecewise-linear keys.
+    for (const float t : {0.0f, 0.2f, 0.37f, 0.5f, 0.9f, 1.0f})
+        EXPECT_NEAR(motionWeights(5, MotionInterpolation::Bezier, t, 4).apply(keys), motionWeights(5, MotionInterpolation::PiecewiseLinear, t).apply(keys),
+                    1e-5f);
+}
+
 }  // namespace streak

@@ -47,6 +47,23 @@ TEST(ValidateScene, RejectsBrokenStructure) {
     Scene badKeys = scene;
     badKeys.meshes[0].numKeys = 3;  // 8 positions are not 3 whole keys
     EXPECT_THROW(validateScene(badKeys), Error);
+    // Bezier pieces must split the keys into pieces of one degree.
+    Scene fiveKeys = scene;
+    Mesh& mesh = fiveKeys.meshes[0];
+    const std::vector<glm::vec3> pose(mesh.positions.begin(), mesh.positions.begin() + std::ptrdiff_t(mesh.numVertices()));
+    mesh.positions.clear();
+    for (int k = 0; k < 5; ++k) mesh.positions.insert(mesh.positions.end(), pose.begin(), pose.end());
+    mesh.normals.clear();
+    mesh.numKeys = 5;
+    mesh.interpolation = MotionInterpolation::Bezier;
+    for (const int pieces : {1, 2, 4}) {
+        mesh.bezierPieces = pieces;
+        EXPECT_NO_THROW(validateScene(fiveKeys)) << pieces;
+    }
+    for (const int pieces : {0, 3, 5}) {
+        mesh.bezierPieces = pieces;
+        EXPECT_THROW(validateScene(fiveKeys), Error) << pieces;
+    }
     EXPECT_NO_THROW(validateScene(scene));
 }
 

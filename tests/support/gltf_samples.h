@@ -124,4 +124,31 @@ inline GltfBuilder quadsThroughEachOther(int quads = 2) {
     return b;
 }
 
+// A quad coloured by its corners, off the axis of a node that turns `degrees` about z at a
+// steady speed over the animation's first second (rotation keys every 1/64 s, so the turn is a
+// circle to well within a thousandth of a pixel), seen by a glTF camera 2 units up the z axis.
+inline GltfBuilder spinningQuad(double degrees) {
+    using nlohmann::json;
+    GltfBuilder b;
+    json primitive;
+    primitive["attributes"]["POSITION"] = b.addFloats({0.1f, -0.25f, 0, 0.6f, -0.25f, 0, 0.6f, 0.25f, 0, 0.1f, 0.25f, 0}, "VEC3", 3);
+    primitive["attributes"]["COLOR_0"] = b.addFloats({1, 0.2f, 0.1f, 1, 0.1f, 0.9f, 0.2f, 1, 0.2f, 0.3f, 1, 1, 0.9f, 0.9f, 0.1f, 1}, "VEC4", 4);
+    primitive["indices"] = b.addIndices({0, 1, 2, 0, 2, 3});
+    const int node = b.addMeshNode(primitive);
+    std::vector<float> times, turns;
+    for (int k = 0; k <= 64; ++k) {
+        const double t = double(k) / 64.0, half = 0.5 * degrees * t * 3.14159265358979 / 180.0;
+        times.push_back(float(t));
+        turns.insert(turns.end(), {0.0f, 0.0f, float(std::sin(half)), float(std::cos(half))});
+    }
+    json animation;
+    animation["samplers"].push_back({{"input", b.addFloats(times, "SCALAR", 1)}, {"output", b.addFloats(turns, "VEC4", 4)}});
+    animation["channels"].push_back({{"sampler", 0}, {"target", {{"node", node}, {"path", "rotation"}}}});
+    b.json()["animations"] = json::array({animation});
+    b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.01}}}}};
+    b.json()["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 2}}});
+    b.addToScene(int(b.json()["nodes"].size() - 1));
+    return b;
+}
+
 }  // namespace streak::test

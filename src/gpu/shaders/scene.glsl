@@ -94,11 +94,12 @@ float timeBetween(ShutterWindow w, float t0, float t1, float f) {
 
 const uint kMaterialMask = 0x7fffffffu;  // triangles[i].w: material, top bit double-sided
 
-// Motion weights (scene/motion.cpp): position(t) = sum of keys times weights.
-void motionWeights(uint numKeys, bool isBezier, float t, out int first, out int count, out float w[MAX_KEYS]) {
+// Motion weights (scene/motion.cpp): position(t) = sum of keys times weights. bezierOrder: the
+// degree of each Bezier piece, 0 for piecewise-linear keys.
+void motionWeights(uint numKeys, uint bezierOrder, float t, out int first, out int count, out float w[MAX_KEYS]) {
     t = clamp(t, 0.0, 1.0);
     for (int i = 0; i < MAX_KEYS; ++i) w[i] = 0.0;
-    if (!isBezier || numKeys == 2u) {
+    if (bezierOrder == 0u || numKeys == 2u) {
         float x = t * float(numKeys - 1u);
         int segment = min(int(x), int(numKeys) - 2);
         float u = x - float(segment);
@@ -108,15 +109,18 @@ void motionWeights(uint numKeys, bool isBezier, float t, out int first, out int 
         w[1] = u;
         return;
     }
-    int n = int(numKeys) - 1;
-    first = 0;
-    count = int(numKeys);
+    int n = int(bezierOrder), pieces = (int(numKeys) - 1) / n;
+    precise float x = t * float(pieces);
+    int piece = min(int(x), pieces - 1);
+    precise float u = x - float(piece);
+    first = piece * n;
+    count = n + 1;
     w[0] = 1.0;
     for (int degree = 1; degree <= n; ++degree)
         for (int i = degree; i >= 0; --i) {
             // precise: no fused multiply-adds, so the weights round as the CPU's do.
-            precise float fromLeft = i > 0 ? w[i - 1] * t : 0.0;
-            precise float stay = i < degree ? w[i] * (1.0 - t) : 0.0;
+            precise float fromLeft = i > 0 ? w[i - 1] * u : 0.0;
+            precise float stay = i < degree ? w[i] * (1.0 - u) : 0.0;
             precise float weight = fromLeft + stay;
             w[i] = weight;
         }
@@ -128,7 +132,7 @@ void vertexAt(uint v, float t, out vec3 position, out vec3 normal) {
     uvec4 mesh = meshes[info.x];
     int first, count;
     float w[MAX_KEYS];
-    motionWeights(mesh.x, mesh.y != 0u, t, first, count, w);
+    motionWeights(mesh.x, mesh.y, t, first, count, w);
     precise vec3 p = vec3(0.0), n = vec3(0.0);  // summed as the CPU sums (MotionWeights::apply)
     for (int i = 0; i < count; ++i) {
         uint k = info.y + uint(first + i) * info.z;

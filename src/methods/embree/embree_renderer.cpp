@@ -166,7 +166,7 @@ private:
             SteppedMesh& m = meshes.emplace_back();
             m.firstTriangle = first;
             first += std::uint32_t(mesh.triangles.size());
-            const bool isCurve = mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2;
+            const bool isCurve = mesh.isCurved();
             m.numSteps = mesh.isStatic() ? 1 : isCurve ? (mesh.numKeys - 1) * m_options.curveSegments + 1 : mesh.numKeys;
             const std::size_t n = mesh.numVertices();
             for (int s = 0; s < m.numSteps; ++s) {

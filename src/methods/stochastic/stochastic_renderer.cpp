@@ -130,9 +130,11 @@ private:
             times[numTimes++] = t0;
             times[numTimes++] = t1;
             times[numTimes++] = 0.5f * (t0 + t1);
-            if (mesh.interpolation == MotionInterpolation::PiecewiseLinear)
-                for (int k = 1; k + 1 < mesh.numKeys && numTimes < int(std::size(times)); ++k)
-                    if (keyTime(k, mesh.numKeys) > t0 && keyTime(k, mesh.numKeys) < t1) times[numTimes++] = keyTime(k, mesh.numKeys);
+            // The joints where the path may turn: every key of linear keys, every order-th of
+            // Bezier pieces.
+            const int step = mesh.bezierOrder();
+            for (int k = step; k + 1 < mesh.numKeys && numTimes < int(std::size(times)); k += step)
+                if (keyTime(k, mesh.numKeys) > t0 && keyTime(k, mesh.numKeys) < t1) times[numTimes++] = keyTime(k, mesh.numKeys);
             glm::dvec2 lo(1e300), hi(-1e300);
             std::array<glm::dvec2, 3> at0{}, at1{}, atMid{};
             for (int k = 0; k < numTimes; ++k) {
@@ -147,7 +149,7 @@ private:
                 }
             }
             double pad = 1.0;  // fixed-point snapping
-            const bool isCurved = !isCameraStatic || (mesh.interpolation == MotionInterpolation::Bezier && mesh.numKeys > 2);
+            const bool isCurved = !isCameraStatic || mesh.isCurved();
             if (isCurved)
                 for (int v = 0; v < 3; ++v) pad += 2.0 * glm::length(atMid[v] - 0.5 * (at0[v] + at1[v]));
             raster::PixelBounds b{int(std::floor(lo.x - pad)), int(std::floor(lo.y - pad)), int(std::floor(hi.x + pad)),

@@ -42,13 +42,15 @@ void expectAgreement(const Scene& scene, int width, int height, int aa, ShadingM
     EXPECT_GE(psnr(cpu, gpu), kMinAgreementDb);
 }
 
-// A w x h pixel square with top-left corner (x, y) + offsets[k] at key k: key poses of any count and interpolation.
+// A w x h pixel square with top-left corner (x, y) + offsets[k] at key k: key poses of any count and
+// interpolation (Bezier keys in `pieces` pieces).
 void addKeyedSquare(Scene& scene, const test::PixelCamera& cam, std::uint32_t material, MotionInterpolation interpolation, float x,
-                    float y, float size, const std::vector<glm::vec2>& offsets) {
+                    float y, float size, const std::vector<glm::vec2>& offsets, int pieces = 1) {
     Mesh mesh;
     mesh.material = material;
     mesh.numKeys = int(offsets.size());
     mesh.interpolation = interpolation;
+    mesh.bezierPieces = pieces;
     for (const glm::vec2& o : offsets)
         for (const glm::vec2& corner : {glm::vec2(0, 0), glm::vec2(0, size), glm::vec2(size, size), glm::vec2(size, 0)})
             mesh.positions.push_back(cam.at(x + o.x + corner.x, y + o.y + corner.y));
@@ -57,9 +59,10 @@ void addKeyedSquare(Scene& scene, const test::PixelCamera& cam, std::uint32_t ma
 }
 
 // Squares crossing a 96x72 image fast (10 to 20 pixels per stratum at S = 4): on a line, on a
-// Bezier curve (bending 14 pixels from its chord in the first and last strata) and zigzagging
-// through piecewise-linear keys inside strata. Motion beyond the space-time bounds would go
-// missing, and at these speeds that is a large error.
+// Bezier curve (bending 14 pixels from its chord in the first and last strata), zigzagging
+// through piecewise-linear keys inside strata, and on two quadratic pieces that meet at a kink
+// inside a stratum. Motion beyond the space-time bounds would go missing, and at these speeds
+// that is a large error.
 Scene fastMotionScene() {
     const test::PixelCamera cam{kWidth, kHeight, 4.0f};
     Scene scene = test::emptyScene();
@@ -70,6 +73,8 @@ Scene fastMotionScene() {
     addKeyedSquare(scene, cam, green, MotionInterpolation::Bezier, 8, 44, 14, {{0, 0}, {20, -100}, {40, 100}, {60, -100}, {80, 0}});
     addKeyedSquare(scene, cam, blue, MotionInterpolation::PiecewiseLinear, 2, 24, 10,
                    {{0, 0}, {14, 30}, {28, 0}, {42, 30}, {56, 0}, {70, 30}, {84, 0}});
+    const std::uint32_t yellow = test::addMaterial(scene, glm::vec3(0.9f, 0.8f, 0.1f));
+    addKeyedSquare(scene, cam, yellow, MotionInterpolation::Bezier, 4, 30, 8, {{0, 0}, {10, 50}, {30, -30}, {50, 50}, {80, 0}}, 2);
     validateScene(scene);
     return scene;
 }

@@ -14,18 +14,17 @@ void main() {
     uint v = triangles[uint(gl_VertexID) / 3u][uint(gl_VertexID) % 3u];
     uvec4 mesh = meshes[vertexInfo[v].x];
     uint numKeys = mesh.x;
-    bool isBezier = mesh.y != 0u;
+    uint step = max(mesh.y, 1u);  // joints where the path may turn: every key, or every Bezier piece's end
     float t0 = u_stratum.x, t1 = u_stratum.y;
     float times[MAX_KEYS + 1];
     times[0] = t0;
     times[1] = t1;
     times[2] = 0.5 * (t0 + t1);
     int numTimes = 3;
-    if (!isBezier)
-        for (uint k = 1u; k + 1u < numKeys; ++k) {
-            float key = float(double(k) / double(numKeys - 1u));  // keyTime, correctly rounded
-            if (key > t0 && key < t1) times[numTimes++] = key;
-        }
+    for (uint k = step; k + 1u < numKeys; k += step) {
+        float key = float(double(k) / double(numKeys - 1u));  // keyTime, correctly rounded
+        if (key > t0 && key < t1) times[numTimes++] = key;
+    }
     dvec2 lo = dvec2(1e300), hi = dvec2(-1e300);
     dvec2 ends[3];  // at t0, t1 and mid-stratum
     corner.needsClipping = 0;
@@ -41,6 +40,6 @@ void main() {
         if (k < 3) ends[k] = p;
     }
     corner.box = dvec4(lo, hi);
-    bool isCurved = u_projection.w != 0.0 || (isBezier && numKeys > 2u);
+    bool isCurved = u_projection.w != 0.0 || mesh.y > 1u;
     corner.chordDeviation = isCurved && corner.needsClipping == 0 ? length(ends[2] - 0.5 * (ends[0] + ends[1])) : 0.0;
 }

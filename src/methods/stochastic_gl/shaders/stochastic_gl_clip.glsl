@@ -18,7 +18,7 @@ vec4 clipAt(uint v, float t) {
     uvec4 mesh = meshes[info.x];
     int first, count;
     float w[MAX_KEYS];
-    motionWeights(mesh.x, mesh.y != 0u, t, first, count, w);
+    motionWeights(mesh.x, mesh.y, t, first, count, w);
     precise vec4 clip = staticClipOfKey(keyPositions[info.y + uint(first) * info.z].xyz) * w[0];
     for (int i = 1; i < count; ++i) clip += staticClipOfKey(keyPositions[info.y + uint(first + i) * info.z].xyz) * w[i];
     return clip;
