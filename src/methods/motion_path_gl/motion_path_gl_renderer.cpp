@@ -25,6 +25,7 @@ struct Options {
     int maxFragments = 150;
     int maxIntervals = 90;
     int maskBits = 128;
+    bool exactWeights = true;  ///< opaque pieces measured in time (motion-path's default), not in mask slices
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter (the shaders' uniforms)
     bool sortIntervals = true;
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
@@ -71,6 +72,7 @@ public:
         for (GLuint program : {paths.id(), resolve.id()}) setInt(program, "u_numSegments", numSegments);
         setInt(resolve.id(), "u_maskBits", m_options.maskBits);
         setInt(resolve.id(), "u_sortIntervals", m_options.sortIntervals ? 1 : 0);
+        setInt(resolve.id(), "u_exactWeights", m_options.exactWeights ? 1 : 0);
         setInt(resolve.id(), "u_textureSamples", m_options.spanShading.maxTextureTaps);
         glProgramUniform1f(resolve.id(), glGetUniformLocation(resolve.id(), "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
         setInt(resolve.id(), "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
@@ -165,6 +167,7 @@ public:
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
+        stats.setCounter("exact_weights", m_options.exactWeights ? 1 : 0);
         exposure::recordSpanShadingSettings(stats, m_options.spanShading);
         exposure::recordSegmentPlan(stats, plan);
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
@@ -185,6 +188,7 @@ std::unique_ptr<Renderer> createMotionPathGlRenderer(OptionMap& options) {
     o.maskBits = options.getInt("mask-bits", 128, 32, 256);
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path-gl': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
+    o.exactWeights = options.getInt("exact-weights", 1, 0, 1) != 0;
     o.spanShading = exposure::spanShadingSettings(options, "motion-path-gl");
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);

@@ -67,29 +67,32 @@ TEST(AccumulationGl, CountsTranslucentLayerOverflow) {
 
 class MotionPathGlAgreement : public testing::TestWithParam<std::string> {};
 
-// The same method on the GPU: the same exact spans (pass 1), intervals, depth-time sort, masks
+// The same method on the GPU: the same exact spans (pass 1), intervals, depth-time sort, resolve
 // and span shading (pass 2), so the images agree to float rounding and the counts of intervals,
 // splits and shaded spans agree too (a span may differ where a root sits on a float boundary).
-// motion-path-gl counts mask slices as the paper does; the CPU twin does too with exact-weights=0,
-// and then the two agree to float rounding: 105-171 dB as EXR at 512x384 on every built-in scene
-// (llvmpipe; docs/BENCHMARKS.md, "GL methods"). Against the CPU's default exact weights they are
-// apart by the masks' quantisation alone (61-97 dB there).
-OptionMap maskSlices(OptionMap options = OptionMap()) {
-    options.set("exact-weights", "0");
+// Both resolve opaque lists exactly in time by default, and count mask slices as the paper does
+// with exact-weights=0. The GPU keeps one interval per segment in its lists: the CPU does too
+// with merge-segments=0 (cpuTwin), which counts as the GPU does and renders as the CPU's default.
+OptionMap cpuTwin(OptionMap options = OptionMap()) {
+    options.set("merge-segments", "0");
     return options;
 }
 
 TEST_P(MotionPathGlAgreement, MatchesCpuMotionPath) {
     const Scene scene = builtin(GetParam());
-    RenderStats gpuStats, cpuStats;
-    const Image gl = test::render("motion-path-gl", scene, 96, 72, OptionMap(), &gpuStats, ShadingMode::Phong);
-    const Image cpu = test::render("motion-path", scene, 96, 72, maskSlices(), &cpuStats, ShadingMode::Phong);
-    std::printf("gl vs cpu %.1f dB\n", psnr(gl, cpu));
-    EXPECT_GE(psnr(gl, cpu), 80.0);
-    ASSERT_GT(cpuStats.counter("intervals"), 0.0);
-    for (const char* counter : {"intervals", "shaded_spans", "interval_splits", "backface_intervals_culled"})
-        EXPECT_NEAR(gpuStats.counter(counter), cpuStats.counter(counter), 1e-3 * cpuStats.counter("intervals")) << counter;
-    EXPECT_EQ(gpuStats.counter("interval_overflow_samples"), 0.0);
+    for (const char* exact : {"1", "0"}) {
+        RenderStats gpuStats, cpuStats;
+        const Image gl = test::render("motion-path-gl", scene, 96, 72, test::withOption("exact-weights", exact), &gpuStats, ShadingMode::Phong);
+        const Image cpu = test::render("motion-path", scene, 96, 72, cpuTwin(test::withOption("exact-weights", exact)), &cpuStats, ShadingMode::Phong);
+        const Image cpuDefault = test::render("motion-path", scene, 96, 72, test::withOption("exact-weights", exact), nullptr, ShadingMode::Phong);
+        std::printf("exact-weights=%s: gl vs cpu %.1f dB, vs cpu merging segments %.1f dB\n", exact, psnr(gl, cpu), psnr(gl, cpuDefault));
+        EXPECT_GE(psnr(gl, cpu), 80.0) << exact;
+        EXPECT_GE(psnr(gl, cpuDefault), 80.0) << exact;
+        ASSERT_GT(cpuStats.counter("intervals"), 0.0);
+        for (const char* counter : {"intervals", "shaded_spans", "interval_splits", "backface_intervals_culled"})
+            EXPECT_NEAR(gpuStats.counter(counter), cpuStats.counter(counter), 1e-3 * cpuStats.counter("intervals")) << counter << " " << exact;
+        EXPECT_EQ(gpuStats.counter("interval_overflow_samples"), 0.0);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, MotionPathGlAgreement,
@@ -104,7 +107,7 @@ TEST(MotionPathGl, EachTextureFilterMatchesTheCpus) {
         std::vector<Image> gls;
         for (const char* filter : {"taps", "swept"}) {
             const Image gl = test::render("motion-path-gl", scene, 96, 72, test::withOption("texture-filter", filter), nullptr, ShadingMode::Phong);
-            const Image cpu = test::render("motion-path", scene, 96, 72, maskSlices(test::withOption("texture-filter", filter)), nullptr,
+            const Image cpu = test::render("motion-path", scene, 96, 72, cpuTwin(test::withOption("texture-filter", filter)), nullptr,
                                            ShadingMode::Phong);
             EXPECT_GE(psnr(gl, cpu), 80.0) << name << " " << filter;
             gls.push_back(gl);
@@ -116,7 +119,7 @@ TEST(MotionPathGl, EachTextureFilterMatchesTheCpus) {
 TEST(MotionPathGl, MatchesCpuWithSubpixelSamples) {
     const Scene scene = builtin("crossing");
     const Image gl = test::render("motion-path-gl", scene, 64, 48, OptionMap(), nullptr, ShadingMode::Phong, 2);
-    const Image cpu = test::render("motion-path", scene, 64, 48, maskSlices(), nullptr, ShadingMode::Phong, 2);
+    const Image cpu = test::render("motion-path", scene, 64, 48, cpuTwin(), nullptr, ShadingMode::Phong, 2);
     std::printf("gl vs cpu %.1f dB\n", psnr(gl, cpu));
     EXPECT_GE(psnr(gl, cpu), 80.0);
 }
@@ -129,8 +132,8 @@ TEST(MotionPathGl, KeepsTheNearestIntervalsPastTheBudgetAsTheCpuDoes) {
     const Scene scene = builtin("translucent");
     RenderStats gpuStats, cpuStats;
     const Image gl = test::render("motion-path-gl", scene, 64, 48, test::withOption("max-intervals", "2"), &gpuStats);
-    const Image cpu = test::render("motion-path", scene, 64, 48, maskSlices(test::withOption("max-intervals", "2")), &cpuStats);
-    const Image full = test::render("motion-path", scene, 64, 48, maskSlices());
+    const Image cpu = test::render("motion-path", scene, 64, 48, cpuTwin(test::withOption("max-intervals", "2")), &cpuStats);
+    const Image full = test::render("motion-path", scene, 64, 48, cpuTwin());
     EXPECT_GT(gpuStats.counter("interval_overflow_samples"), 0.0);
     EXPECT_EQ(gpuStats.counter("interval_overflow_samples"), cpuStats.counter("interval_overflow_samples"));
     EXPECT_GE(psnr(gl, cpu), 33.0);
@@ -143,7 +146,7 @@ TEST(MotionPathGl, RendersAgainWhenTheListBufferOverflows) {
     const Scene scene = builtin("fence", test::withOption("travel", "3"));
     RenderStats stats;
     const Image image = test::render("motion-path-gl", scene, 96, 72, OptionMap(), &stats);
-    const Image cpu = test::render("motion-path", scene, 96, 72, maskSlices());
+    const Image cpu = test::render("motion-path", scene, 96, 72, cpuTwin());
     EXPECT_GE(stats.counter("path_renders"), 2.0);
     EXPECT_GE(psnr(image, cpu), 80.0);
 }
@@ -155,7 +158,7 @@ TEST(MotionPathGl, PastTheMemoryCapAppliesAPerSampleBudgetAndCountsTheOverflow) 
     const Scene scene = builtin("fence", test::withOption("travel", "3"));
     RenderStats stats;
     const Image capped = test::render("motion-path-gl", scene, 128, 96, test::withOption("gpu-memory", "1"), &stats);
-    const Image cpu = test::render("motion-path", scene, 128, 96, maskSlices());
+    const Image cpu = test::render("motion-path", scene, 128, 96, cpuTwin());
     const double capNodes = double(1 << 20) / 24.0;
     EXPECT_LE(stats.counter("list_capacity_nodes"), capNodes);
     EXPECT_LT(stats.counter("sample_budget"), 150.0);

@@ -1,12 +1,16 @@
 // motion-path-gl pass 2, one invocation per sample: gathers the sample's intervals (the nearest
 // MAX_INTERVALS on overflow), shades the translucent ones (their alpha decides what shows
 // behind them), sorts in depth-time (split crossings, then Hong & Oh's four tests), resolves
-// with u_maskBits-bit masks of the row's exposure (per-slice transmittance when translucent), and shades only
-// the visible opaque pieces, wholly visible pieces of one triangle that abut merged first.
+// opaque lists exactly in time as motion-path does (methods/motion_path/resolve.cpp: each
+// interval's visible share and the spans where it shows), or with u_maskBits-bit masks of the
+// row's exposure (u_exactWeights 0, the paper's; per-slice transmittance when translucent),
+// and shades only the visible opaque pieces, wholly visible pieces of one triangle that abut
+// merged first (exposure/visible_pieces.cpp).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int u_maskBits;
 uniform int u_sortIntervals;
+uniform int u_exactWeights;
 
 struct PathNode {
     uint segment;
@@ -28,6 +32,74 @@ layout(std430, binding = 9) buffer ResolveCounterBuffer {
 
 Interval intervals[MAX_INTERVALS];
 float weights[MAX_INTERVALS];
+
+// The opaque pieces to shade (exposure::VisiblePiece): a triangle, a time span, its share of
+// the sample, and whether it is visible all through the span (then it may merge with an
+// abutting whole piece of its triangle). An interval meeting k spans of the union before it
+// shows in at most k + 1 gaps and leaves the union k - 1 spans shorter, so n intervals show in
+// at most 2n pieces: the array cannot overflow (addPiece's guard keeps it so).
+const int kMaxPieces = 2 * MAX_INTERVALS;
+uint pieceTriangles[kMaxPieces];
+vec4 pieces[kMaxPieces];  // t0, t1, weight, 1 when whole
+int numPieces = 0;
+
+float measure(float t0, float t1) { return g_window.isIdentity ? t1 - t0 : exposureAt(g_window, t1) - exposureAt(g_window, t0); }
+
+void addPiece(uint tri, float t0, float t1, float weight, bool isWhole) {
+    if (numPieces == kMaxPieces) return;
+    pieceTriangles[numPieces] = tri;
+    pieces[numPieces++] = vec4(t0, t1, weight, isWhole ? 1.0 : 0.0);
+}
+
+// Opaque intervals in depth-time order, measured exactly in the row's exposure: the union of the
+// spans so far (disjoint, in time order) hides part of each; the rest is its weight, and each gap
+// the union leaves in it is a visible piece (resolveOpaqueExact). Returns the background's share;
+// the colour of translucent materials' intervals (of alpha 1 here: shaded when gathered) goes
+// into `sum`.
+float resolveOpaqueExact(int n, inout vec3 sum) {
+    vec2 covered[MAX_INTERVALS], next[MAX_INTERVALS];
+    int numCovered = 0;
+    float coveredLength = 0.0;
+    for (int i = 0; i < n; ++i) weights[i] = 0.0;
+    for (int i = 0; i < n && coveredLength < 1.0; ++i) {
+        float t0 = clamp(intervals[i].t0, 0.0, 1.0), t1 = clamp(intervals[i].t1, 0.0, 1.0);
+        if (!(t1 > t0)) continue;
+        uint tri = intervals[i].segment / uint(u_numSegments);
+        // A translucent material's interval (here of alpha 1) was shaded whole when gathered.
+        bool isShaded = isTranslucentMaterial(triangles[tri].w & kMaterialMask);
+        float hidden = 0.0, lo = t0, hi = t1, shownFrom = t0;
+        for (int c = 0; c < numCovered; ++c) {
+            if (!(covered[c].y > t0) || !(covered[c].x < t1)) continue;
+            hidden += measure(max(covered[c].x, t0), min(covered[c].y, t1));
+            lo = min(lo, covered[c].x);
+            hi = max(hi, covered[c].y);
+            float shown = shownFrom < covered[c].x && !isShaded ? measure(shownFrom, covered[c].x) : 0.0;
+            if (shown > 0.0) addPiece(tri, shownFrom, covered[c].x, shown, true);
+            shownFrom = max(shownFrom, covered[c].y);
+        }
+        float shown = shownFrom < t1 && !isShaded ? measure(shownFrom, t1) : 0.0;
+        if (shown > 0.0) addPiece(tri, shownFrom, t1, shown, true);
+        float visible = max(0.0, measure(t0, t1) - hidden);
+        weights[i] = visible;
+        if (isShaded) sum += intervals[i].color.rgb * visible;
+        coveredLength += visible;
+        // The union again: the spans before, the merged one, the spans after.
+        int m = 0;
+        bool isPlaced = false;
+        for (int c = 0; c < numCovered; ++c) {
+            if (covered[c].y > t0 && covered[c].x < t1) continue;
+            if (!isPlaced && covered[c].x >= t1) {
+                next[m++] = vec2(lo, hi);
+                isPlaced = true;
+            }
+            next[m++] = covered[c];
+        }
+        if (!isPlaced) next[m++] = vec2(lo, hi);
+        for (int c = 0; c < m; ++c) covered[c] = next[c];
+        numCovered = m;
+    }
+    return max(0.0, 1.0 - coveredLength);
+}
 
 float resolveOpaque(int n) {
     uint accumulated[kMaskWords], current[kMaskWords];
@@ -156,54 +228,51 @@ void main() {
         }
     }
 
-    float background = isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
-    vec3 sum = u_background.rgb * background;
-
-    // Visible opaque pieces, by triangle then time, so abutting whole pieces merge.
-    for (int i = 0; i < n; ++i) {
-        if (weights[i] <= 0.0) continue;
-        uint tri = intervals[i].segment / uint(u_numSegments);
-        if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
-            sum += intervals[i].color.rgb * weights[i];
-            weights[i] = 0.0;
-            continue;
-        }
-        // Whole: visible all through its span; the weight then records the mask count.
-        uint mask[kMaskWords];
-        exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, mask);
-        int bits = 0;
-        for (int w = 0; w < kMaskWords; ++w) bits += bitCount(mask[w]);
-        intervals[i].color.a = weights[i] * float(u_maskBits) >= float(bits) - 0.5 ? 1.0 : 0.0;
-        intervals[i].segment = tri;  // from here on: the triangle
-    }
-    // Pieces left with weight > 0 are opaque; sort them by (triangle, t0).
-    int m = 0;
-    for (int i = 0; i < n; ++i)
-        if (weights[i] > 0.0) {
-            intervals[m] = intervals[i];
-            weights[m] = weights[i];
-            ++m;
-        }
-    // Insertion sort in the same form as the gather's.
-    for (int i = 1; i < m; ++i)
-        for (int j = i; j > 0; --j) {
-            Interval a = intervals[j - 1], b = intervals[j];
-            if (!(b.segment < a.segment || (b.segment == a.segment && b.t0 < a.t0))) break;
-            float wa = weights[j - 1], wb = weights[j];
-            intervals[j - 1] = b;
-            intervals[j] = a;
-            weights[j - 1] = wb;
-            weights[j] = wa;
-        }
+    vec3 sum = vec3(0.0);
     int shaded = 0;
-    for (int i = 0; i < m;) {
-        float t0 = intervals[i].t0, t1 = intervals[i].t1, weight = weights[i];
-        uint tri = intervals[i].segment;
-        bool isWhole = intervals[i].color.a > 0.5;
+    float background;
+    if (!isTranslucent && u_exactWeights != 0) {
+        background = resolveOpaqueExact(n, sum);
+    } else {
+        background = isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
+        // Translucent intervals were shaded above; opaque ones are pieces, whole where visible
+        // all through their span (the weight then records the mask count).
+        for (int i = 0; i < n; ++i) {
+            if (weights[i] <= 0.0) continue;
+            uint tri = intervals[i].segment / uint(u_numSegments);
+            if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
+                sum += intervals[i].color.rgb * weights[i];
+                continue;
+            }
+            uint mask[kMaskWords];
+            exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, mask);
+            int bits = 0;
+            for (int w = 0; w < kMaskWords; ++w) bits += bitCount(mask[w]);
+            addPiece(tri, intervals[i].t0, intervals[i].t1, weights[i], weights[i] * float(u_maskBits) >= float(bits) - 0.5);
+        }
+    }
+    sum += u_background.rgb * background;
+
+    // The pieces by (triangle, t0), swapped down into place as in the gather.
+    for (int i = 1; i < numPieces; ++i)
+        for (int j = i; j > 0; --j) {
+            uint ta = pieceTriangles[j - 1], tb = pieceTriangles[j];
+            vec4 a = pieces[j - 1], b = pieces[j];
+            if (!(tb < ta || (tb == ta && b.x < a.x))) break;
+            pieceTriangles[j - 1] = tb;
+            pieceTriangles[j] = ta;
+            pieces[j - 1] = b;
+            pieces[j] = a;
+        }
+    // Abutting whole pieces of one triangle are one span.
+    for (int i = 0; i < numPieces;) {
+        uint tri = pieceTriangles[i];
+        float t0 = pieces[i].x, t1 = pieces[i].y, weight = pieces[i].z;
+        bool isWhole = pieces[i].w > 0.5;
         int j = i + 1;
-        for (; j < m && isWhole && intervals[j].color.a > 0.5 && intervals[j].segment == tri && intervals[j].t0 == t1; ++j) {
-            t1 = intervals[j].t1;
-            weight += weights[j];
+        for (; j < numPieces && isWhole && pieces[j].w > 0.5 && pieceTriangles[j] == tri && pieces[j].x == t1; ++j) {
+            t1 = pieces[j].y;
+            weight += pieces[j].z;
         }
         sum += shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
         ++shaded;
