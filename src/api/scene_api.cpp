@@ -101,6 +101,8 @@ GltfOptions gltfOptionsOf(const LoadOptions& o) {
     else if (o.motionCurve != "linear") throw Error("motion curve must be linear or bezier, got '" + o.motionCurve + "'");
     if (o.motionFitSamples < -1) throw Error("motion fit samples must be 0 or more (-1: the default), got " + std::to_string(o.motionFitSamples));
     gltf.motionFitSamples = o.motionFitSamples;
+    if (o.motionCurveOrder != LoadOptions().motionCurveOrder && (gltf.motionCurve != MotionInterpolation::Bezier || o.motionKeys != 0))
+        throw Error("motion curve order applies to Bezier pieces chosen without motion keys (motion curve bezier, motion keys 0)");
     gltf.bezierOrder = o.motionCurveOrder;
     gltf.keyTolerancePixels = o.keyTolerancePixels;
     gltf.imageHeight = o.height;

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace streak {
 
@@ -70,6 +71,35 @@ TEST(ReferenceRenderers, QuadTranslatingOverPixelsCoversTheAnalyticFraction) {
                 for (int py = 0; py < 4; ++py) EXPECT_NEAR(image.at(px, py).x, expected, 1.0f / samples + 1e-5f) << px;
             }
         }
+    }
+}
+
+TEST(ReferenceRenderers, SquareOnBezierPiecesBendingApartAroundTheirJointIsCoveredAllAlong) {
+    // An 8x8 pixel white square on two quadratic Bezier pieces (control points below, pixels),
+    // the first bending 30 pixels up and the second 30 down, joined at t = 1/2 on the shutter's
+    // chord. At any time the square covers 64 pixels of the black image, so the image sums to
+    // 64 whatever the sample times. stochastic's one stratum per sample holds the joint: bounds
+    // from the stratum's ends and middle alone (all on the chord) would miss both bends.
+    const test::PixelCamera cam{100, 80, 4.0f};
+    Scene scene = test::emptyScene();
+    const std::uint32_t white = test::addMaterial(scene, glm::vec3(1.0f));
+    Mesh mesh;
+    mesh.material = white;
+    mesh.numKeys = 5;
+    mesh.interpolation = MotionInterpolation::Bezier;
+    mesh.bezierPieces = 2;
+    for (const glm::vec2 o : {glm::vec2(0, 0), glm::vec2(20, -60), glm::vec2(40, 0), glm::vec2(60, 60), glm::vec2(80, 0)})
+        for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(0, 8), glm::vec2(8, 8), glm::vec2(8, 0)})
+            mesh.positions.push_back(cam.at(10 + o.x + corner.x, 36 + o.y + corner.y));
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.meshes.push_back(mesh);
+    validateScene(scene);
+    for (const auto& [method, samples, tolerance] : {std::tuple{"accumulation", 64, 0.02}, std::tuple{"stochastic", 1, 0.1}}) {
+        const Image image = renderWith(method, scene, 100, 80, samples, 4);
+        double sum = 0.0;
+        for (int y = 0; y < 80; ++y)
+            for (int x = 0; x < 100; ++x) sum += double(image.at(x, y).x);
+        EXPECT_NEAR(sum, 64.0, 64.0 * tolerance) << method;
     }
 }
 

@@ -12,7 +12,7 @@ layout(std430, binding = 1) readonly buffer KeyPositionBuffer { vec4 keyPosition
 layout(std430, binding = 2) readonly buffer KeyNormalBuffer { vec4 keyNormals[]; };       // same layout; zero without normals
 layout(std430, binding = 3) readonly buffer VertexBuffer { uvec4 vertexInfo[]; };         // mesh, first key index, key stride
 layout(std430, binding = 4) readonly buffer VertexAttributeBuffer { vec4 vertexAttributes[]; };  // per vertex: colour, then (uv, 0, 0)
-layout(std430, binding = 5) readonly buffer MeshBuffer { uvec4 meshes[]; };               // keys, Bezier?, has normals, unused
+layout(std430, binding = 5) readonly buffer MeshBuffer { uvec4 meshes[]; };               // keys, Bezier pieces' degree (0: linear keys), has normals, unused
 layout(std430, binding = 6) readonly buffer MaterialBuffer { MaterialData materials[]; };
 
 layout(std140, binding = 0) uniform SceneBlock {

@@ -120,9 +120,11 @@ private:
 
         // Pixels triangle i may cover at some time in [t0, t1]. Exact for linear segments seen
         // by a static camera (a moving point's projection then moves on a line); for curved
-        // screen paths (moving camera, Bezier keys) the bounds are padded by the path's
-        // deviation from its chord at mid-interval. Anything reaching the near plane or the
-        // guard band gets the whole image.
+        // screen paths (moving camera, Bezier keys) the bounds are padded by each corner's
+        // deviation from its chord at mid-interval, and where joints of the path (keys, Bezier
+        // pieces' ends) fall inside, at the middle of each stretch between them too: two pieces
+        // can bend apart around a joint that sits on the whole interval's chord. Anything
+        // reaching the near plane or the guard band gets the whole image.
         raster::PixelBounds spaceTimeBounds(std::size_t i, float t0, float t1) const {
             const Mesh& mesh = scene.meshes[geometry.triangles()[i].mesh];
             float times[MotionWeights::kMaxKeys + 3];
@@ -150,8 +152,23 @@ private:
             }
             double pad = 1.0;  // fixed-point snapping
             const bool isCurved = !isCameraStatic || mesh.isCurved();
-            if (isCurved)
-                for (int v = 0; v < 3; ++v) pad += 2.0 * glm::length(atMid[v] - 0.5 * (at0[v] + at1[v]));
+            if (isCurved) {
+                std::array<double, 3> deviation{};
+                for (int v = 0; v < 3; ++v) deviation[v] = glm::length(atMid[v] - 0.5 * (at0[v] + at1[v]));
+                if (numTimes > 3)  // joints inside: the stretches between t0, them (ascending, times[3] on) and t1
+                    for (int k = 2; k < numTimes; ++k) {
+                        const float a = k == 2 ? t0 : times[k], b = k + 1 < numTimes ? times[k + 1] : t1;
+                        const float ends[3] = {a, b, 0.5f * (a + b)};
+                        std::array<std::array<glm::dvec2, 3>, 3> at{};  // corner v at a, b and the middle
+                        for (int j = 0; j < 3; ++j) {
+                            const std::array<glm::vec4, 3> clip = clipCorners(i, ends[j], isCameraStatic ? glm::mat4(1.0f) : clipFromWorldAt(ends[j]));
+                            if (raster::needsClipping(clip, scene.camera.zNear)) return {0, 0, viewport.width - 1, viewport.height - 1};
+                            for (int v = 0; v < 3; ++v) at[v][j] = raster::rasterFromClip(clip[v], viewport);
+                        }
+                        for (int v = 0; v < 3; ++v) deviation[v] = std::max(deviation[v], glm::length(at[v][2] - 0.5 * (at[v][0] + at[v][1])));
+                    }
+                for (int v = 0; v < 3; ++v) pad += 2.0 * deviation[v];
+            }
             raster::PixelBounds b{int(std::floor(lo.x - pad)), int(std::floor(lo.y - pad)), int(std::floor(hi.x + pad)),
                                   int(std::floor(hi.y + pad))};
             b.x0 = std::max(b.x0, 0), b.y0 = std::max(b.y0, 0);

@@ -60,8 +60,8 @@ void addKeyedSquare(Scene& scene, const test::PixelCamera& cam, std::uint32_t ma
 
 // Squares crossing a 96x72 image fast (10 to 20 pixels per stratum at S = 4): on a line, on a
 // Bezier curve (bending 14 pixels from its chord in the first and last strata), zigzagging
-// through piecewise-linear keys inside strata, and on two quadratic pieces that meet at a kink
-// inside a stratum. Motion beyond the space-time bounds would go missing, and at these speeds
+// through piecewise-linear keys inside strata, and on three quadratic pieces whose joints (1/3,
+// 2/3) fall inside strata. Motion beyond the space-time bounds would go missing, and at these speeds
 // that is a large error.
 Scene fastMotionScene() {
     const test::PixelCamera cam{kWidth, kHeight, 4.0f};
@@ -74,7 +74,7 @@ Scene fastMotionScene() {
     addKeyedSquare(scene, cam, blue, MotionInterpolation::PiecewiseLinear, 2, 24, 10,
                    {{0, 0}, {14, 30}, {28, 0}, {42, 30}, {56, 0}, {70, 30}, {84, 0}});
     const std::uint32_t yellow = test::addMaterial(scene, glm::vec3(0.9f, 0.8f, 0.1f));
-    addKeyedSquare(scene, cam, yellow, MotionInterpolation::Bezier, 4, 30, 8, {{0, 0}, {10, 50}, {30, -30}, {50, 50}, {80, 0}}, 2);
+    addKeyedSquare(scene, cam, yellow, MotionInterpolation::Bezier, 4, 30, 8, {{0, 0}, {10, 50}, {25, 0}, {40, -50}, {55, 0}, {70, 50}, {80, 0}}, 3);
     validateScene(scene);
     return scene;
 }

@@ -53,10 +53,9 @@ void addPiece(uint tri, float t0, float t1, float weight, bool isWhole) {
 
 // Opaque intervals in depth-time order, measured exactly in the row's exposure: the union of the
 // spans so far (disjoint, in time order) hides part of each; the rest is its weight, and each gap
-// the union leaves in it is a visible piece (resolveOpaqueExact). Returns the background's share;
-// the colour of translucent materials' intervals (of alpha 1 here: shaded when gathered) goes
-// into `sum`.
-float resolveOpaqueExact(int n, inout vec3 sum) {
+// the union leaves in it is a visible piece (resolveOpaqueExact). Returns the background's share.
+// Translucent materials' intervals (of alpha 1 here) take no pieces: they were shaded when gathered.
+float resolveOpaqueExact(int n) {
     vec2 covered[MAX_INTERVALS], next[MAX_INTERVALS];
     int numCovered = 0;
     float coveredLength = 0.0;
@@ -65,7 +64,6 @@ float resolveOpaqueExact(int n, inout vec3 sum) {
         float t0 = clamp(intervals[i].t0, 0.0, 1.0), t1 = clamp(intervals[i].t1, 0.0, 1.0);
         if (!(t1 > t0)) continue;
         uint tri = intervals[i].segment / uint(u_numSegments);
-        // A translucent material's interval (here of alpha 1) was shaded whole when gathered.
         bool isShaded = isTranslucentMaterial(triangles[tri].w & kMaterialMask);
         float hidden = 0.0, lo = t0, hi = t1, shownFrom = t0;
         for (int c = 0; c < numCovered; ++c) {
@@ -81,7 +79,6 @@ float resolveOpaqueExact(int n, inout vec3 sum) {
         if (shown > 0.0) addPiece(tri, shownFrom, t1, shown, true);
         float visible = max(0.0, measure(t0, t1) - hidden);
         weights[i] = visible;
-        if (isShaded) sum += intervals[i].color.rgb * visible;
         coveredLength += visible;
         // The union again: the spans before, the merged one, the spans after.
         int m = 0;
@@ -228,30 +225,34 @@ void main() {
         }
     }
 
-    vec3 sum = vec3(0.0);
-    int shaded = 0;
-    float background;
-    if (!isTranslucent && u_exactWeights != 0) {
-        background = resolveOpaqueExact(n, sum);
-    } else {
-        background = isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
-        // Translucent intervals were shaded above; opaque ones are pieces, whole where visible
-        // all through their span (the weight then records the mask count).
-        for (int i = 0; i < n; ++i) {
-            if (weights[i] <= 0.0) continue;
-            uint tri = intervals[i].segment / uint(u_numSegments);
-            if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
-                sum += intervals[i].color.rgb * weights[i];
-                continue;
-            }
+    // Opaque lists measured exactly give their visible pieces from the resolve.
+    bool isExact = !isTranslucent && u_exactWeights != 0;
+    float background = isExact ? resolveOpaqueExact(n) : isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
+    vec3 sum = u_background.rgb * background;
+    // Translucent materials' intervals were shaded when gathered; the other intervals are pieces,
+    // whole where visible all through their span: with exact weights when their weight is the
+    // span's exposure, with masks when it holds every slice of it.
+    for (int i = 0; i < n; ++i) {
+        if (weights[i] <= 0.0) continue;
+        uint tri = intervals[i].segment / uint(u_numSegments);
+        if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
+            sum += intervals[i].color.rgb * weights[i];
+            continue;
+        }
+        if (isExact) continue;
+        bool isWhole;
+        if (u_exactWeights != 0) {
+            isWhole = weights[i] >= measure(intervals[i].t0, intervals[i].t1) * (1.0 - 1e-5);
+        } else {
             uint mask[kMaskWords];
             exposedMask(intervals[i].t0, intervals[i].t1, u_maskBits, mask);
             int bits = 0;
             for (int w = 0; w < kMaskWords; ++w) bits += bitCount(mask[w]);
-            addPiece(tri, intervals[i].t0, intervals[i].t1, weights[i], weights[i] * float(u_maskBits) >= float(bits) - 0.5);
+            isWhole = weights[i] * float(u_maskBits) >= float(bits) - 0.5;
         }
+        addPiece(tri, intervals[i].t0, intervals[i].t1, weights[i], isWhole);
     }
-    sum += u_background.rgb * background;
+    int shaded = 0;
 
     // The pieces by (triangle, t0), swapped down into place as in the gather.
     for (int i = 1; i < numPieces; ++i)

@@ -1,12 +1,13 @@
 // stochastic-gl: one corner of a triangle over the stratum [u_stratum.x, u_stratum.y], at the
-// times the CPU's spaceTimeBounds looks at (both ends, the middle, and for piecewise-linear
-// motion the keys between): its raster box, how far its screen path bends from the chord, and
-// whether the triangle needs clipping there. The geometry shader joins the three corners.
+// times the CPU's spaceTimeBounds looks at (both ends, the middle, and the joints between: every
+// key of linear keys, every Bezier piece's end): its raster box, how far its screen path bends
+// from the chord (of the stratum, and of each stretch between joints), and whether the triangle
+// needs clipping there. The geometry shader joins the three corners.
 uniform vec2 u_stratum;
 
 out CornerBounds {
     dvec4 box;              // raster lo.xy, hi.xy
-    double chordDeviation;  // |p(mid) - (p(t0) + p(t1)) / 2| for curved screen paths, else 0
+    double chordDeviation;  // the largest |p(mid) - (p(a) + p(b)) / 2| over the stretches [a, b], for curved screen paths, else 0
     int needsClipping;      // 1: near plane or guard band crossed at one of the times
 } corner;
 
@@ -42,4 +43,14 @@ void main() {
     corner.box = dvec4(lo, hi);
     bool isCurved = u_projection.w != 0.0 || mesh.y > 1u;
     corner.chordDeviation = isCurved && corner.needsClipping == 0 ? length(ends[2] - 0.5 * (ends[0] + ends[1])) : 0.0;
+    // Joints inside: the stretches between t0, them (ascending, times[3] on) and t1.
+    for (int k = 2; isCurved && numTimes > 3 && k < numTimes; ++k) {
+        float a = k == 2 ? t0 : times[k], b = k + 1 < numTimes ? times[k + 1] : t1;
+        vec4 ca = clipAt(v, a), cb = clipAt(v, b), cm = clipAt(v, 0.5 * (a + b));
+        if (!isInsideClipVolume(ca) || !isInsideClipVolume(cb) || !isInsideClipVolume(cm)) {
+            corner.needsClipping = 1;
+            continue;
+        }
+        corner.chordDeviation = max(corner.chordDeviation, length(rasterFromClip(cm) - 0.5 * (rasterFromClip(ca) + rasterFromClip(cb))));
+    }
 }
