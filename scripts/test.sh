@@ -2,5 +2,5 @@
 # Builds streak and runs the whole test suite (GoogleTest through CTest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh
+scripts/build.sh --all
 ctest --test-dir build --output-on-failure --parallel "$(nproc)"

@@ -5,14 +5,17 @@
 
 #include <CLI/CLI.hpp>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -127,6 +130,8 @@ struct RenderArgs {
     int memoryBudget = sk::kDefaultMemoryBudgetMB;  ///< MB
     int repeat = 1;
     std::optional<std::string> sequence;  ///< --frames A:B[:STEP]
+    bool skipExisting = false;            ///< --skip-existing: frames whose output exists are not rendered
+    bool placeholders = false;            ///< --placeholders: claim each frame's output before rendering it
     std::string stats;
     // Every scene: the shutter's curve and rolling window; glTF: where it sits around the frame.
     std::optional<std::string> shutterCurve;
@@ -280,6 +285,19 @@ std::string framePath(const std::string& pattern, double frame, bool isSequence,
     return out;
 }
 
+// Claims a frame for this process (Blender's placeholders): creates its output, empty, only if no
+// file is there, in one atomic step (O_EXCL), so that of the machines sharing a folder exactly one
+// renders each frame. False where the output exists: rendered, or claimed by another.
+bool claimOutput(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0) {
+        if (errno == EEXIST) return false;
+        throw Error("cannot claim " + path + ": " + std::strerror(errno));
+    }
+    ::close(fd);
+    return true;
+}
+
 int runRender(const RenderArgs& args) {
     using Clock = std::chrono::steady_clock;
     if (args.width <= 0 || args.height <= 0 || args.width > sk::kMaxImageSize || args.height > sk::kMaxImageSize)
@@ -339,35 +357,47 @@ int runRender(const RenderArgs& args) {
     TerminalProgress progress;
     std::vector<std::string> frameJson;
     for (std::size_t f = 0; f < list.frames.size(); ++f) {
-        const auto start = Clock::now();
-        load.frame = list.frames[f];
-        const sk::Scene scene = sk::Scene::load(args.scene, load);
-
-        // Renders before the last warm up what a renderer keeps between renders (GL programs and
-        // the driver's compiled code, caches); the image and stats are the last's.
-        sk::RenderResult result;
-        for (int r = 0; r < args.repeat; ++r) {
-            const double share = 1.0 / (double(list.frames.size()) * args.repeat), offset = (double(f) * args.repeat + r) * share;
-            result = renderer.render(scene, [&](double fraction) { progress.update(offset + share * fraction); });
+        // A frame whose output exists is another's or done (--skip-existing); with placeholders
+        // this process claims the frame first, and a claim it cannot make is a frame taken.
+        const bool isClaimed = args.placeholders && claimOutput(outputs[f]);
+        if ((args.placeholders && !isClaimed) || (args.skipExisting && !args.placeholders && std::filesystem::exists(outputs[f]))) {
+            std::cout << "skipped frame " << list.frames[f] << ": " << outputs[f] << " exists" << std::endl;
+            continue;
         }
-        sk::Stats& stats = result.stats;
-        stats.counters["repeat"] = args.repeat;
-        if (list.isSequence) stats.counters["frame"] = list.frames[f];
-        sk::writeImage(result.image, outputs[f]);
-        stats.timesMs.emplace_back("total", std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-        if (isStatsPerFrame) {
-            try {
-                writeTextFile(statsPaths[f], stats.json());
-            } catch (const Error&) {
-                std::filesystem::remove(outputs[f]);  // all or nothing, per frame
-                throw;
+        try {
+            const auto start = Clock::now();
+            load.frame = list.frames[f];
+            const sk::Scene scene = sk::Scene::load(args.scene, load);
+
+            // Renders before the last warm up what a renderer keeps between renders (GL programs
+            // and the driver's compiled code, caches); the image and stats are the last's.
+            sk::RenderResult result;
+            for (int r = 0; r < args.repeat; ++r) {
+                const double share = 1.0 / (double(list.frames.size()) * args.repeat), offset = (double(f) * args.repeat + r) * share;
+                result = renderer.render(scene, [&](double fraction) { progress.update(offset + share * fraction); });
             }
-        } else if (!args.stats.empty()) {
-            frameJson.push_back(stats.json());
+            sk::Stats& stats = result.stats;
+            stats.counters["repeat"] = args.repeat;
+            if (list.isSequence) stats.counters["frame"] = list.frames[f];
+            sk::writeImage(result.image, outputs[f]);
+            stats.timesMs.emplace_back("total", std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            if (isStatsPerFrame) {
+                try {
+                    writeTextFile(statsPaths[f], stats.json());
+                } catch (const Error&) {
+                    std::filesystem::remove(outputs[f]);  // all or nothing, per frame
+                    throw;
+                }
+            } else if (!args.stats.empty()) {
+                frameJson.push_back(stats.json());
+            }
+        } catch (...) {
+            if (isClaimed) std::filesystem::remove(outputs[f]);  // the claim goes with a failed render
+            throw;
         }
     }
-    if (!args.stats.empty() && !isStatsPerFrame) {
-        std::string text = frameJson.front();
+    if (!args.stats.empty() && !isStatsPerFrame && (list.isSequence || !frameJson.empty())) {
+        std::string text = list.isSequence ? std::string() : frameJson.front();
         if (list.isSequence) {
             text = "{\"frames\": [\n";
             for (std::size_t f = 0; f < frameJson.size(); ++f) text += (f ? ",\n" : "") + frameJson[f];
@@ -512,6 +542,12 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     render->add_option("--frames", renderArgs.sequence,
                        "glTF: render the frames A:B[:STEP] (frame F gets the shutter at F), each to -o with its %d (e.g. out_%04d.png)");
+    render->add_flag("--skip-existing", renderArgs.skipExisting,
+                     "render only the frames whose output file is missing (Blender's Overwrite off)");
+    render->add_flag("--placeholders", renderArgs.placeholders,
+                     "claim each frame by creating its output, empty, before rendering it, only if no file is there (atomically): a "
+                     "frame whose output exists is skipped, and a failed render removes its claim (Blender's Placeholders). "
+                     "Machines sharing a folder can then all run the same --frames, and each frame is rendered once");
     render->add_option("--stats", renderArgs.stats,
                        "write figures of the render (times, counters) as JSON to this file (a sequence: one file per frame with %d, else one {\"frames\": [...]})");
     render->add_option("--shutter-curve", renderArgs.shutterCurve,

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <sstream>
 
 namespace streak {
@@ -170,6 +171,58 @@ TEST(Cli, ShutterPositionShiftsTheBlurByHalfAndWholeShutters) {
     EXPECT_TRUE(std::isinf(psnr(end, renderAt("--frame 6", "six.exr"))));
     EXPECT_TRUE(std::isinf(psnr(renderAt("--frame 12 --shutter-position start", "start.exr"), renderAt("--frame 12", "twelve.exr"))));
     EXPECT_LT(psnr(center, end), 30.0) << "the positions should differ";
+}
+
+// --skip-existing renders only the frames whose output is missing: one deleted is rendered again
+// as it was, one that exists is left as it is (Blender's Overwrite off).
+TEST(Cli, SkipExistingRendersOnlyTheMissingFrames) {
+    test::TempDir dir;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string base = "render " + dir.file("triangle.glb") + " -m analytic --width 32 --height 24 --frames 0:3 -o " + dir.file("f_%d.exr");
+    ASSERT_EQ(runStreak(dir, base).exitCode, 0);
+    const std::string second = readFile(dir.file("f_2.exr"));
+    writeFile(dir.file("f_1.exr"), {'k', 'e', 'e', 'p'});
+    std::filesystem::remove(dir.file("f_2.exr"));
+    const RunResult r = runStreak(dir, base + " --skip-existing");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readFile(dir.file("f_1.exr")), "keep");
+    EXPECT_EQ(readFile(dir.file("f_2.exr")), second);  // deterministic: the same bytes again
+    EXPECT_NE(r.out.find("skipped frame 1"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("skipped frame 2"), std::string::npos) << r.out;
+}
+
+// --placeholders: two workers run the same --frames into one folder at once, and each frame is
+// rendered by exactly one of them (each writes its own stats), equal to the frame rendered
+// alone; a frame already claimed by a third (its output there, empty) is left to it. Bad input
+// claims nothing.
+TEST(Cli, PlaceholdersLetWorkersSharingAFolderRenderEachFrameOnce) {
+    test::TempDir dir, workerA, workerB, alone;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string base = "render " + dir.file("triangle.glb") + " -m analytic --width 32 --height 24 --aa 2 ";
+    const std::string frames = "--frames 0:9 --placeholders -o " + dir.file("f_%d.exr");
+    writeFile(dir.file("f_5.exr"), {});
+    auto a = std::async(std::launch::async, [&] { return runStreak(workerA, base + frames + " --stats " + dir.file("a_%d.json")); });
+    auto b = std::async(std::launch::async, [&] { return runStreak(workerB, base + frames + " --stats " + dir.file("b_%d.json")); });
+    const RunResult ra = a.get(), rb = b.get();
+    ASSERT_EQ(ra.exitCode, 0) << ra.err;
+    ASSERT_EQ(rb.exitCode, 0) << rb.err;
+    for (int frame = 0; frame <= 9; ++frame) {
+        SCOPED_TRACE(frame);
+        const std::string f = std::to_string(frame);
+        const int renders = int(std::filesystem::exists(dir.file("a_" + f + ".json"))) + int(std::filesystem::exists(dir.file("b_" + f + ".json")));
+        if (frame == 5) {
+            EXPECT_EQ(renders, 0);
+            EXPECT_EQ(std::filesystem::file_size(dir.file("f_5.exr")), 0u);
+            continue;
+        }
+        EXPECT_EQ(renders, 1);
+        ASSERT_EQ(runStreak(alone, base + "--frame " + f + " -o " + alone.file("single.exr")).exitCode, 0);
+        EXPECT_EQ(readFile(dir.file("f_" + f + ".exr")), readFile(alone.file("single.exr")));
+    }
+    EXPECT_EQ(countLines(ra.out) + countLines(rb.out), 2 * 10 - 9) << "every frame but the one each rendered is reported skipped";
+    // Bad input is found before any frame is claimed.
+    EXPECT_EQ(runStreak(dir, base + "--frames 20:22 --placeholders --aa 0 -o " + dir.file("f_%d.exr")).exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("f_20.exr")));
 }
 
 // --frames A:B renders each frame to the output pattern, each equal to rendering that frame
