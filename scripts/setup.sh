@@ -11,6 +11,7 @@ packages=(
   libtinygltf-dev libembree-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
   python3-matplotlib python3-dev python3-pybind11 python3-numpy
+  parallel
 )
 # --bench: Blender too, for the Cycles ground truth of bench/cycles_reference.py (not for CI).
 if [ "${1:-}" = "--bench" ]; then packages+=(blender); fi

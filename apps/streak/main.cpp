@@ -34,27 +34,44 @@ namespace sk = streak::api;
 constexpr int kExitBadInput = 2;
 
 // A one-line progress bar on stderr, drawn only when stderr is a terminal.
-class TerminalProgress {
+// Progress on stderr: a bar redrawn in place when stderr is a terminal; with --progress-lines,
+// lines a farm manager's parser reads (Deadline's and Flamenco's forms): "Progress: N%" as each
+// whole percent is reached, and "Frame F done in S s" after each frame; else nothing.
+class Progress {
 public:
-    TerminalProgress() : m_enabled(isatty(STDERR_FILENO) != 0) {}
-    ~TerminalProgress() {
-        if (m_drawn) std::fprintf(stderr, "\r%60s\r", "");
+    explicit Progress(bool lines) : m_mode(lines ? Mode::Lines : isatty(STDERR_FILENO) != 0 ? Mode::Bar : Mode::None) {}
+    ~Progress() {
+        if (m_mode == Mode::Bar && m_drawn) std::fprintf(stderr, "\r%60s\r", "");
     }
     void update(double fraction) {
-        if (!m_enabled) return;
+        const int percent = int(std::clamp(fraction, 0.0, 1.0) * 100.0 + (m_mode == Mode::Bar ? 0.5 : 0.0));
+        if (m_mode == Mode::Lines) {
+            if (percent <= m_percent) return;
+            m_percent = percent;
+            std::fprintf(stderr, "Progress: %d%%\n", percent);
+            std::fflush(stderr);
+            return;
+        }
+        if (m_mode != Mode::Bar) return;
         const auto now = std::chrono::steady_clock::now();
         if (fraction < 1.0 && m_drawn && now - m_last < std::chrono::milliseconds(100)) return;
         m_last = now;
         m_drawn = true;
         const int width = 40, filled = int(fraction * width + 0.5);
-        std::fprintf(stderr, "\r[%s%s] %3d%%", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
-                     int(fraction * 100.0 + 0.5));
+        std::fprintf(stderr, "\r[%s%s] %3d%%", std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), percent);
+        std::fflush(stderr);
+    }
+    void frameDone(double frame, double seconds) {
+        if (m_mode != Mode::Lines) return;
+        std::fprintf(stderr, "Frame %ld done in %.1f s\n", std::lround(frame), seconds);
         std::fflush(stderr);
     }
 
 private:
-    bool m_enabled;
+    enum class Mode { None, Bar, Lines };
+    Mode m_mode;
     bool m_drawn = false;
+    int m_percent = -1;
     std::chrono::steady_clock::time_point m_last;
 };
 
@@ -132,6 +149,7 @@ struct RenderArgs {
     std::optional<std::string> sequence;  ///< --frames A:B[:STEP]
     bool skipExisting = false;            ///< --skip-existing: frames whose output exists are not rendered
     bool placeholders = false;            ///< --placeholders: claim each frame's output before rendering it
+    bool progressLines = false;           ///< --progress-lines: progress as lines on stderr
     std::string stats;
     // Every scene: the shutter's curve and rolling window; glTF: where it sits around the frame.
     std::optional<std::string> shutterCurve;
@@ -354,7 +372,7 @@ int runRender(const RenderArgs& args) {
     }
     if (!args.stats.empty() && !isStatsPerFrame) checkWritable(args.stats, false);
 
-    TerminalProgress progress;
+    Progress progress(args.progressLines);
     std::vector<std::string> frameJson;
     for (std::size_t f = 0; f < list.frames.size(); ++f) {
         // A frame whose output exists is another's or done (--skip-existing); with placeholders
@@ -362,6 +380,7 @@ int runRender(const RenderArgs& args) {
         const bool isClaimed = args.placeholders && claimOutput(outputs[f]);
         if ((args.placeholders && !isClaimed) || (args.skipExisting && !args.placeholders && std::filesystem::exists(outputs[f]))) {
             std::cout << "skipped frame " << list.frames[f] << ": " << outputs[f] << " exists" << std::endl;
+            progress.update(double(f + 1) / double(list.frames.size()));
             continue;
         }
         try {
@@ -391,6 +410,8 @@ int runRender(const RenderArgs& args) {
             } else if (!args.stats.empty()) {
                 frameJson.push_back(stats.json());
             }
+            progress.update(double(f + 1) / double(list.frames.size()));
+            progress.frameDone(list.frames[f], std::chrono::duration<double>(Clock::now() - start).count());
         } catch (...) {
             if (isClaimed) std::filesystem::remove(outputs[f]);  // the claim goes with a failed render
             throw;
@@ -542,6 +563,9 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     render->add_option("--frames", renderArgs.sequence,
                        "glTF: render the frames A:B[:STEP] (frame F gets the shutter at F), each to -o with its %d (e.g. out_%04d.png)");
+    render->add_flag("--progress-lines", renderArgs.progressLines,
+                     "progress as lines on stderr, for a farm manager's log parser: \"Progress: N%\" at each whole percent and "
+                     "\"Frame F done in S s\" after each frame (default: a bar when stderr is a terminal, else nothing)");
     render->add_flag("--skip-existing", renderArgs.skipExisting,
                      "render only the frames whose output file is missing (Blender's Overwrite off)");
     render->add_flag("--placeholders", renderArgs.placeholders,

@@ -40,7 +40,13 @@ std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raste
     std::vector<glm::vec3> image(std::size_t(width) * std::size_t(height), background);
     {
         PhaseTimer timer(stats, "tiles");
-        grid.forEachTile([&](int tile) { renderTile(tile, scratch.local(), image); }, /*includeEmpty=*/true);
+        PartsProgress tiles(progress, std::size_t(grid.numTiles()));
+        grid.forEachTile(
+            [&](int tile) {
+                renderTile(tile, scratch.local(), image);
+                tiles.partDone();
+            },
+            /*includeEmpty=*/true);
     }
     if (progress) progress->update(1.0);
     return image;

@@ -191,6 +191,36 @@ TEST(Cli, SkipExistingRendersOnlyTheMissingFrames) {
     EXPECT_EQ(r.out.find("skipped frame 2"), std::string::npos) << r.out;
 }
 
+// --progress-lines: a farm manager's lines on stderr, each whole percent once and rising to 100,
+// and one "Frame F done in S s" per frame rendered.
+TEST(Cli, ProgressLinesGiveEachPercentOnceAndEachFrameDone) {
+    test::TempDir dir;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const RunResult r = runStreak(dir, "render " + dir.file("triangle.glb") + " -m analytic --width 64 --height 48 --frames 0:2 --progress-lines -o " +
+                                           dir.file("f_%d.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream lines(r.err);
+    std::string line;
+    int last = -1, done = 0;
+    while (std::getline(lines, line)) {
+        int percent = 0;
+        double seconds = 0.0;
+        long frame = -1;
+        if (std::sscanf(line.c_str(), "Progress: %d%%", &percent) == 1) {
+            EXPECT_GT(percent, last) << line;
+            last = percent;
+        } else if (std::sscanf(line.c_str(), "Frame %ld done in %lf s", &frame, &seconds) == 2) {
+            EXPECT_EQ(frame, done) << line;
+            EXPECT_GE(seconds, 0.0);
+            ++done;
+        } else {
+            ADD_FAILURE() << "unexpected line: " << line;
+        }
+    }
+    EXPECT_EQ(last, 100);
+    EXPECT_EQ(done, 3);
+}
+
 // --placeholders: two workers run the same --frames into one folder at once, and each frame is
 // rendered by exactly one of them (each writes its own stats), equal to the frame rendered
 // alone; a frame already claimed by a third (its output there, empty) is left to it. Bad input
@@ -223,6 +253,26 @@ TEST(Cli, PlaceholdersLetWorkersSharingAFolderRenderEachFrameOnce) {
     // Bad input is found before any frame is claimed.
     EXPECT_EQ(runStreak(dir, base + "--frames 20:22 --placeholders --aa 0 -o " + dir.file("f_%d.exr")).exitCode, 2);
     EXPECT_FALSE(std::filesystem::exists(dir.file("f_20.exr")));
+}
+
+// A farm engine: GNU parallel (scripts/setup.sh installs it) runs two workers of the same
+// --frames command with --placeholders over one output folder; every frame is rendered once and
+// equals its single render to the byte.
+TEST(Cli, GnuParallelWorkersWithPlaceholdersRenderEachFrameOnce) {
+    if (std::system("command -v parallel >/dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed (scripts/setup.sh installs it)";
+    test::TempDir dir, alone;
+    writeFile(dir.file("triangle.glb"), slidingTriangle().glb());
+    const std::string base = "render " + dir.file("triangle.glb") + " -m analytic --width 32 --height 24 --aa 2 ";
+    const std::string command = "parallel --will-cite -j 2 --halt now,fail=1 " + std::string(STREAK_CLI_PATH) + " " + base +
+                                "--frames 0:11 --placeholders -o " + dir.file("f_%d.exr") + " --stats " + dir.file("{}_%d.json") + " ::: a b";
+    ASSERT_EQ(std::system((command + " >" + dir.file("log.txt") + " 2>&1").c_str()), 0) << readFile(dir.file("log.txt"));
+    for (int frame = 0; frame <= 11; ++frame) {
+        SCOPED_TRACE(frame);
+        const std::string f = std::to_string(frame);
+        EXPECT_EQ(int(std::filesystem::exists(dir.file("a_" + f + ".json"))) + int(std::filesystem::exists(dir.file("b_" + f + ".json"))), 1);
+        ASSERT_EQ(runStreak(alone, base + "--frame " + f + " -o " + alone.file("single.exr")).exitCode, 0);
+        EXPECT_EQ(readFile(dir.file("f_" + f + ".exr")), readFile(alone.file("single.exr")));
+    }
 }
 
 // --frames A:B renders each frame to the output pattern, each equal to rendering that frame

@@ -128,8 +128,10 @@ public:
         {
             PhaseTimer timer(context.stats, "tiles");
             const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
+            PartsProgress tiles(context.progress, std::size_t(grid.numTiles()));
             grid.forEachTile([&](int tile) {
                 renderTile(frame, grid, tile, shareFragments, scratch.local(), image);
+                tiles.partDone();
             }, /*includeEmpty=*/true);
         }
         if (context.progress) context.progress->update(1.0);
