@@ -10,6 +10,8 @@ import numpy as np
 import streak
 
 CLI = os.environ.get("STREAK_CLI", "build/streak")
+CESIUM_MAN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "scenes", "CesiumMan", "glTF-Binary",
+                          "CesiumMan.glb")
 
 
 def sweeping_quad():
@@ -35,6 +37,24 @@ class RenderTest(unittest.TestCase):
             self.assertEqual(image.shape, (48, 64, 3))
             self.assertEqual(image.dtype, np.float32)
             self.assertTrue(np.array_equal(image, streak.read_image(path)))
+
+    @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
+    def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):
+        # Scene.load takes the CLI's motion flags: chosen Bezier pieces render as the CLI's do.
+        flags = ["--frame", "12", "--shutter", "6", "--motion-curve", "bezier", "--motion-curve-order", "3"]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cli.exr")
+            subprocess.run([CLI, "render", CESIUM_MAN, "-m", "higher-order", "--width", "64", "--height", "48", *flags, "-o", path],
+                           check=True)
+            scene = streak.Scene.load(CESIUM_MAN, frame=12, shutter=6, width=64, height=48, motion_curve="bezier", motion_curve_order=3)
+            image, stats = streak.render(scene, method="higher-order", width=64, height=48, stats=True)
+            self.assertTrue(np.array_equal(image, streak.read_image(path)))
+            self.assertEqual(stats["counters"]["motion_bezier_order"], 3)
+            linear = streak.Scene.load(CESIUM_MAN, frame=12, shutter=6, width=64, height=48, motion_keys=5)
+            _, stats = streak.render(linear, method="analytic", width=64, height=48, stats=True)
+            self.assertEqual(stats["counters"]["motion_keys"], 5)
+        with self.assertRaises(streak.Error):
+            streak.Scene.load(CESIUM_MAN, motion_curve_order=3)  # an order without Bezier pieces applies to nothing
 
     def test_arrays_give_the_closed_form_coverage(self):
         keys, indices, camera = sweeping_quad()
