@@ -377,8 +377,9 @@ int runRender(const RenderArgs& args) {
     for (std::size_t f = 0; f < list.frames.size(); ++f) {
         // A frame whose output exists is another's or done (--skip-existing); with placeholders
         // this process claims the frame first, and a claim it cannot make is a frame taken.
-        const bool isClaimed = args.placeholders && claimOutput(outputs[f]);
-        if ((args.placeholders && !isClaimed) || (args.skipExisting && !args.placeholders && std::filesystem::exists(outputs[f]))) {
+        const bool isTaken = args.placeholders ? !claimOutput(outputs[f]) : args.skipExisting && std::filesystem::exists(outputs[f]);
+        const bool isClaimed = args.placeholders && !isTaken;
+        if (isTaken) {
             std::cout << "skipped frame " << list.frames[f] << ": " << outputs[f] << " exists" << std::endl;
             progress.update(double(f + 1) / double(list.frames.size()));
             continue;

@@ -137,36 +137,32 @@ private:
             const int step = mesh.bezierOrder();
             for (int k = step; k + 1 < mesh.numKeys && numTimes < int(std::size(times)); k += step)
                 if (keyTime(k, mesh.numKeys) > t0 && keyTime(k, mesh.numKeys) < t1) times[numTimes++] = keyTime(k, mesh.numKeys);
+            // Each corner's raster position at time t; false where the triangle needs clipping.
+            const auto rasterCorners = [&](float t, std::array<glm::dvec2, 3>& out) {
+                const std::array<glm::vec4, 3> clip = clipCorners(i, t, isCameraStatic ? glm::mat4(1.0f) : clipFromWorldAt(t));
+                if (raster::needsClipping(clip, scene.camera.zNear)) return false;
+                for (int v = 0; v < 3; ++v) out[v] = raster::rasterFromClip(clip[v], viewport);
+                return true;
+            };
+            const raster::PixelBounds everything{0, 0, viewport.width - 1, viewport.height - 1};
             glm::dvec2 lo(1e300), hi(-1e300);
-            std::array<glm::dvec2, 3> at0{}, at1{}, atMid{};
+            std::array<glm::dvec2, 3> at[std::size(times)];
             for (int k = 0; k < numTimes; ++k) {
-                const std::array<glm::vec4, 3> clip = clipCorners(i, times[k], isCameraStatic ? glm::mat4(1.0f) : clipFromWorldAt(times[k]));
-                if (raster::needsClipping(clip, scene.camera.zNear)) return {0, 0, viewport.width - 1, viewport.height - 1};
-                for (int v = 0; v < 3; ++v) {
-                    const glm::dvec2 p = raster::rasterFromClip(clip[v], viewport);
-                    lo = glm::min(lo, p), hi = glm::max(hi, p);
-                    if (k == 0) at0[v] = p;
-                    else if (k == 1) at1[v] = p;
-                    else if (k == 2) atMid[v] = p;
-                }
+                if (!rasterCorners(times[k], at[k])) return everything;
+                for (int v = 0; v < 3; ++v) lo = glm::min(lo, at[k][v]), hi = glm::max(hi, at[k][v]);
             }
             double pad = 1.0;  // fixed-point snapping
             const bool isCurved = !isCameraStatic || mesh.isCurved();
             if (isCurved) {
                 std::array<double, 3> deviation{};
-                for (int v = 0; v < 3; ++v) deviation[v] = glm::length(atMid[v] - 0.5 * (at0[v] + at1[v]));
-                if (numTimes > 3)  // joints inside: the stretches between t0, them (ascending, times[3] on) and t1
-                    for (int k = 2; k < numTimes; ++k) {
-                        const float a = k == 2 ? t0 : times[k], b = k + 1 < numTimes ? times[k + 1] : t1;
-                        const float ends[3] = {a, b, 0.5f * (a + b)};
-                        std::array<std::array<glm::dvec2, 3>, 3> at{};  // corner v at a, b and the middle
-                        for (int j = 0; j < 3; ++j) {
-                            const std::array<glm::vec4, 3> clip = clipCorners(i, ends[j], isCameraStatic ? glm::mat4(1.0f) : clipFromWorldAt(ends[j]));
-                            if (raster::needsClipping(clip, scene.camera.zNear)) return {0, 0, viewport.width - 1, viewport.height - 1};
-                            for (int v = 0; v < 3; ++v) at[v][j] = raster::rasterFromClip(clip[v], viewport);
-                        }
-                        for (int v = 0; v < 3; ++v) deviation[v] = std::max(deviation[v], glm::length(at[v][2] - 0.5 * (at[v][0] + at[v][1])));
-                    }
+                for (int v = 0; v < 3; ++v) deviation[v] = glm::length(at[2][v] - 0.5 * (at[0][v] + at[1][v]));
+                // Joints inside: the stretches between t0, them (ascending, times[3] on) and t1.
+                for (int k = 2; numTimes > 3 && k < numTimes; ++k) {
+                    const int a = k == 2 ? 0 : k, b = k + 1 < numTimes ? k + 1 : 1;
+                    std::array<glm::dvec2, 3> middle;
+                    if (!rasterCorners(0.5f * (times[a] + times[b]), middle)) return everything;
+                    for (int v = 0; v < 3; ++v) deviation[v] = std::max(deviation[v], glm::length(middle[v] - 0.5 * (at[a][v] + at[b][v])));
+                }
                 for (int v = 0; v < 3; ++v) pad += 2.0 * deviation[v];
             }
             raster::PixelBounds b{int(std::floor(lo.x - pad)), int(std::floor(lo.y - pad)), int(std::floor(hi.x + pad)),

@@ -27,7 +27,7 @@ void main() {
         if (key > t0 && key < t1) times[numTimes++] = key;
     }
     dvec2 lo = dvec2(1e300), hi = dvec2(-1e300);
-    dvec2 ends[3];  // at t0, t1 and mid-stratum
+    dvec2 at[MAX_KEYS + 1];  // at each time
     corner.needsClipping = 0;
     for (int k = 0; k < numTimes; ++k) {
         vec4 clip = clipAt(v, times[k]);
@@ -35,22 +35,21 @@ void main() {
             corner.needsClipping = 1;
             continue;
         }
-        dvec2 p = rasterFromClip(clip);
-        lo = min(lo, p);
-        hi = max(hi, p);
-        if (k < 3) ends[k] = p;
+        at[k] = rasterFromClip(clip);
+        lo = min(lo, at[k]);
+        hi = max(hi, at[k]);
     }
     corner.box = dvec4(lo, hi);
     bool isCurved = u_projection.w != 0.0 || mesh.y > 1u;
-    corner.chordDeviation = isCurved && corner.needsClipping == 0 ? length(ends[2] - 0.5 * (ends[0] + ends[1])) : 0.0;
+    corner.chordDeviation = isCurved && corner.needsClipping == 0 ? length(at[2] - 0.5 * (at[0] + at[1])) : 0.0;
     // Joints inside: the stretches between t0, them (ascending, times[3] on) and t1.
-    for (int k = 2; isCurved && numTimes > 3 && k < numTimes; ++k) {
-        float a = k == 2 ? t0 : times[k], b = k + 1 < numTimes ? times[k + 1] : t1;
-        vec4 ca = clipAt(v, a), cb = clipAt(v, b), cm = clipAt(v, 0.5 * (a + b));
-        if (!isInsideClipVolume(ca) || !isInsideClipVolume(cb) || !isInsideClipVolume(cm)) {
+    for (int k = 2; isCurved && corner.needsClipping == 0 && numTimes > 3 && k < numTimes; ++k) {
+        int a = k == 2 ? 0 : k, b = k + 1 < numTimes ? k + 1 : 1;
+        vec4 middle = clipAt(v, 0.5 * (times[a] + times[b]));
+        if (!isInsideClipVolume(middle)) {
             corner.needsClipping = 1;
             continue;
         }
-        corner.chordDeviation = max(corner.chordDeviation, length(rasterFromClip(cm) - 0.5 * (rasterFromClip(ca) + rasterFromClip(cb))));
+        corner.chordDeviation = max(corner.chordDeviation, length(rasterFromClip(middle) - 0.5 * (at[a] + at[b])));
     }
 }
