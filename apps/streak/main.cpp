@@ -139,6 +139,7 @@ struct RenderArgs {
     std::optional<int> gpuMemory;
     std::vector<std::string> options;
     int aa = 1;
+    std::optional<std::string> region;  ///< --region x0,y0,x1,y1
     bool sampleGrid = false;
     std::string shading = "phong";
     std::optional<std::string> background;
@@ -337,6 +338,16 @@ int runRender(const RenderArgs& args) {
     settings.seed = args.seed;
     settings.threads = args.threads;
     settings.memoryBudgetMB = args.memoryBudget;
+    if (args.region) {
+        sk::Region r;
+        char extra = 0;
+        if (std::sscanf(args.region->c_str(), "%d,%d,%d,%d%c", &r.x0, &r.y0, &r.x1, &r.y1, &extra) != 4)
+            throw Error("--region must be four whole numbers x0,y0,x1,y1 (pixels [x0, x1) x [y0, y1)), got '" + *args.region + "'");
+        if (!(r.x0 >= 0 && r.y0 >= 0 && r.x0 < r.x1 && r.y0 < r.y1 && r.x1 <= args.width && r.y1 <= args.height))
+            throw Error("--region " + *args.region + " is not a rectangle inside the " + std::to_string(args.width) + "x" + std::to_string(args.height) +
+                        " image (x0,y0,x1,y1: pixels [x0, x1) x [y0, y1))");
+        settings.region = r;
+    }
     // Method-specific flags become the method's options; a method rejects those it does not take.
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
@@ -465,6 +476,21 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
     return 0;
 }
 
+// `streak stitch`: regions of one frame, rendered apart with --region to EXR, joined into it.
+int runStitch(const std::string& output, const std::vector<std::string>& inputs) {
+    checkWritable(output, true);
+    std::vector<sk::Image> regions;
+    for (const std::string& path : inputs) {
+        if (lowercaseExtension(path) != ".exr") throw Error("cannot stitch " + path + ": stitch joins EXR regions (a PNG does not say where its region lies)");
+        regions.push_back(sk::readImage(path));
+        if (!regions.back().isRegion()) throw Error("cannot stitch " + path + ": it is a whole frame, not a region (render regions with --region to .exr)");
+    }
+    const sk::Image frame = sk::stitch(regions);
+    sk::writeImage(frame, output);
+    std::cout << "stitched " << inputs.size() << " regions into " << frame.width << "x" << frame.height << " -> " << output << "\n";
+    return 0;
+}
+
 int runExport(const std::string& spec, const std::string& path) {
     if (lowercaseExtension(path) != ".glb") throw Error("cannot write " + path + ": export writes glTF binary (.glb) only");
     checkWritable(path, false);
@@ -552,6 +578,9 @@ int run(int argc, char** argv) {
                        "GL methods: MB the per-sample lists may grow to before the per-sample budget applies (1024)");
     render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples (n-rooks: each its own row and column), box filter")->capture_default_str();
+    render->add_option("--region", renderArgs.region,
+                       "render only the pixels [x0, x1) x [y0, y1) of the image, x0,y0,x1,y1 (Blender's border render): to .exr the "
+                       "region keeps its place in the frame (data window), and 'streak stitch' joins regions into the whole frame, bit for bit");
     render->add_flag("--sample-grid", renderArgs.sampleGrid, "place the --aa samples on the regular N x N grid instead of n-rooks");
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
@@ -612,6 +641,14 @@ int run(int argc, char** argv) {
     shellCommand->add_option("--height", shellArgs.height, "image height, for the aspect of a framing camera")->capture_default_str();
     addGltfFlags(shellCommand, shellArgs);
 
+    std::string stitchOutput;
+    std::vector<std::string> stitchInputs;
+    CLI::App* stitchCommand = app.add_subcommand(
+        "stitch", "join regions of one frame, rendered with --region to .exr, into the whole frame: each pixel from the one region "
+                  "holding it (an error if they overlap or leave a pixel out)");
+    stitchCommand->add_option("output", stitchOutput, "the whole frame (.png or .exr)")->required();
+    stitchCommand->add_option("regions", stitchInputs, "the regions (.exr)")->required();
+
     CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes, one per line");
     CLI::App* methods = app.add_subcommand("methods", "list the motion-blur methods, one per line");
 
@@ -630,6 +667,7 @@ int run(int argc, char** argv) {
     if (render->parsed()) return runRender(renderArgs);
     if (compare->parsed()) return runCompare(compareA, compareB, heatmap, foregroundLevel);
     if (exportCommand->parsed()) return runExport(exportScene, exportPath);
+    if (stitchCommand->parsed()) return runStitch(stitchOutput, stitchInputs);
     if (shellCommand->parsed()) return runShell(shellArgs);
     if (scenes->parsed()) return runScenes();
     if (methods->parsed()) return runMethods();

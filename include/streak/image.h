@@ -14,12 +14,22 @@ namespace streak::api {
 struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb;
+    // A region of a larger frame (RenderSettings::region; an EXR whose data window lies inside
+    // its display window): the frame's size, and the pixel of it where the image's top-left
+    // pixel lies. frameWidth 0: the image is a whole frame.
+    int x = 0, y = 0, frameWidth = 0, frameHeight = 0;
+    bool isRegion() const { return frameWidth > 0; }
     float at(int x, int y, int channel) const { return rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(channel)]; }
 };
 
 // PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing.
 void writeImage(const Image& image, const std::string& path);
 Image readImage(const std::string& path);
+// Joins regions of one frame (each placed in it: isRegion) into the whole frame, each pixel from
+// the one region that holds it. Throws Error unless every region lies in a frame of one size and
+// together they cover each of its pixels exactly once.
+Image stitch(const std::vector<Image>& regions);
+
 // Throws Error unless the path ends in an image extension writeImage knows (.png, .exr), so a
 // caller can refuse a bad output before a long render.
 void checkImagePath(const std::string& path);

@@ -36,10 +36,19 @@ inline constexpr int kDefaultMemoryBudgetMB = 8192;
 // budget leaves above the scene, splitting tiles that would pass it; the stats count the splits
 // (memory_budget_splits) and, where a single pixel passed it, what was cut
 // (memory_budget_pixels_cut, memory_budget_dropped).
+// A rectangle of pixels of the image, [x0, x1) x [y0, y1) (Blender's border render).
+struct Region {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
 struct RenderSettings {
     std::string method = "motion-path";
     std::map<std::string, std::string> options;
     int width = 1024, height = 768;
+    // Render only this rectangle of the width x height image: the result is its pixels, placed
+    // in the frame (Image::isRegion), each bit for bit the whole frame's, so regions rendered
+    // apart (on other machines) stitch() into the whole frame without seams.
+    std::optional<Region> region;
     int aa = 1;
     bool sampleGrid = false;
     bool unlit = false;

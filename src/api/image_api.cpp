@@ -5,6 +5,10 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace streak::api {
 
 Image imageOf(const streak::Image& in) {
@@ -12,6 +16,7 @@ Image imageOf(const streak::Image& in) {
     out.width = in.width(), out.height = in.height();
     out.rgb.reserve(std::size_t(in.width()) * std::size_t(in.height()) * 3);
     for (const glm::vec3& p : in.pixels()) out.rgb.insert(out.rgb.end(), {p.x, p.y, p.z});
+    if (const std::optional<FramePlacement>& p = in.placement()) out.x = p->x, out.y = p->y, out.frameWidth = p->frameWidth, out.frameHeight = p->frameHeight;
     return out;
 }
 
@@ -20,7 +25,42 @@ streak::Image imageOf(const Image& in) {
         throw Error("image: rgb must be width x height x 3 floats");
     streak::Image out(in.width, in.height);
     for (std::size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
+    if (in.isRegion()) out.place({in.x, in.y, in.frameWidth, in.frameHeight});
     return out;
+}
+
+Image stitch(const std::vector<Image>& regions) {
+    if (regions.empty()) throw Error("stitch: no regions");
+    const auto placed = [](const Image& r) { return std::to_string(r.width) + "x" + std::to_string(r.height) + " at " + std::to_string(r.x) + "," + std::to_string(r.y); };
+    std::vector<streak::Image> in;
+    for (const Image& r : regions) {
+        if (!r.isRegion()) throw Error("stitch: a " + std::to_string(r.width) + "x" + std::to_string(r.height) + " image is not a region of a frame (render it with a region, to EXR)");
+        if (r.frameWidth != regions.front().frameWidth || r.frameHeight != regions.front().frameHeight)
+            throw Error("stitch: the regions belong to frames of different sizes (" + std::to_string(regions.front().frameWidth) + "x" +
+                        std::to_string(regions.front().frameHeight) + " and " + std::to_string(r.frameWidth) + "x" + std::to_string(r.frameHeight) + ")");
+        in.push_back(imageOf(r));  // checks the size and that it lies in its frame
+    }
+    const int width = regions.front().frameWidth, height = regions.front().frameHeight;
+    streak::Image frame(width, height);
+    std::vector<int> owner(std::size_t(width) * std::size_t(height), -1);
+    for (std::size_t k = 0; k < in.size(); ++k) {
+        const FramePlacement& p = *in[k].placement();
+        for (int y = 0; y < in[k].height(); ++y)
+            for (int x = 0; x < in[k].width(); ++x) {
+                int& o = owner[std::size_t(p.y + y) * std::size_t(width) + std::size_t(p.x + x)];
+                if (o >= 0)
+                    throw Error("stitch: regions " + std::to_string(o + 1) + " (" + placed(regions[std::size_t(o)]) + ") and " + std::to_string(k + 1) + " (" +
+                                placed(regions[k]) + ") overlap at pixel " + std::to_string(p.x + x) + "," + std::to_string(p.y + y));
+                o = int(k);
+                frame.at(p.x + x, p.y + y) = in[k].at(x, y);
+            }
+    }
+    if (const auto gap = std::find(owner.begin(), owner.end(), -1); gap != owner.end()) {
+        const std::size_t i = std::size_t(gap - owner.begin());
+        throw Error("stitch: the regions do not cover the " + std::to_string(width) + "x" + std::to_string(height) + " frame: pixel " +
+                    std::to_string(i % std::size_t(width)) + "," + std::to_string(i / std::size_t(width)) + " is in none");
+    }
+    return imageOf(frame);
 }
 
 void writeImage(const Image& image, const std::string& path) { streak::writeImage(imageOf(image), path); }

@@ -91,6 +91,11 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (settings.aa < 1 || settings.aa > 16) throw Error("render: aa must be in [1, 16], got " + std::to_string(settings.aa));
     if (settings.threads < 0) throw Error("render: threads must be 0 (all cores) or more, got " + std::to_string(settings.threads));
     if (settings.memoryBudgetMB < 1) throw Error("render: memoryBudgetMB must be 1 or more, got " + std::to_string(settings.memoryBudgetMB));
+    if (const std::optional<Region>& r = settings.region;
+        r && !(r->x0 >= 0 && r->y0 >= 0 && r->x0 < r->x1 && r->y0 < r->y1 && r->x1 <= settings.width && r->y1 <= settings.height))
+        throw Error("render: region " + std::to_string(r->x0) + "," + std::to_string(r->y0) + "," + std::to_string(r->x1) + "," + std::to_string(r->y1) +
+                    " (x0,y0,x1,y1: pixels [x0, x1) x [y0, y1)) is not a rectangle inside the " + std::to_string(settings.width) + "x" +
+                    std::to_string(settings.height) + " image");
     OptionMap options;
     for (const auto& [key, value] : settings.options) options.set(key, value);
     m_impl->method = createRenderer(settings.method, options);
@@ -101,6 +106,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
     s.seed = settings.seed;
     s.memoryBudgetMB = std::uint64_t(settings.memoryBudgetMB);
+    if (const std::optional<Region>& r = settings.region) s.region = raster::PixelBounds{r->x0, r->y0, r->x1 - 1, r->y1 - 1};
 }
 
 Renderer::~Renderer() = default;
@@ -143,8 +149,12 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
     RenderResult result;
     {
         PhaseTimer timer(stats, "render");
-        result.image = imageOf(m_impl->method->render(in.scene, m_impl->layerSettings, context));
+        const streak::Image image = m_impl->method->render(in.scene, m_impl->layerSettings, context);
+        const std::optional<Region>& r = settings.region;
+        result.image = imageOf(r ? image.region(r->x0, r->y0, r->x1, r->y1) : image);
     }
+    if (const std::optional<Region>& r = settings.region)
+        stats.setInfo("region", std::to_string(r->x0) + "," + std::to_string(r->y0) + "," + std::to_string(r->x1) + "," + std::to_string(r->y1));
     result.stats = statsOf(stats);
     return result;
 }

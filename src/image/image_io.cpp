@@ -105,6 +105,12 @@ std::vector<char> encodePng(const Image& image) {
 
 std::vector<char> encodeExr(const Image& image, const std::string& path) {
     Imf::Header header(image.width(), image.height());  // ZIP compression: lossless
+    if (const std::optional<FramePlacement>& p = image.placement()) {
+        // A region: the frame is the display window, the region the data window inside it.
+        header.displayWindow() = Imath::Box2i({0, 0}, {p->frameWidth - 1, p->frameHeight - 1});
+        header.dataWindow() = Imath::Box2i({p->x, p->y}, {p->x + image.width() - 1, p->y + image.height() - 1});
+    }
+    const Imath::Box2i dataWindow = header.dataWindow();
     for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
 
     // Slice wants a non-const base pointer even for writing; it only reads through it.
@@ -112,9 +118,9 @@ std::vector<char> encodeExr(const Image& image, const std::string& path) {
     const std::size_t xStride = sizeof(glm::vec3);
     const std::size_t yStride = xStride * std::size_t(image.width());
     Imf::FrameBuffer frameBuffer;
-    frameBuffer.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->x), xStride, yStride));
-    frameBuffer.insert("G", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->y), xStride, yStride));
-    frameBuffer.insert("B", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(&first->z), xStride, yStride));
+    frameBuffer.insert("R", Imf::Slice::Make(Imf::FLOAT, &first->x, dataWindow, xStride, yStride));
+    frameBuffer.insert("G", Imf::Slice::Make(Imf::FLOAT, &first->y, dataWindow, xStride, yStride));
+    frameBuffer.insert("B", Imf::Slice::Make(Imf::FLOAT, &first->z, dataWindow, xStride, yStride));
 
     MemoryOStream stream(path);
     {
@@ -206,6 +212,11 @@ Image decodeExr(const std::vector<char>& bytes, const std::string& path) {
 
     if (grey)
         for (glm::vec3& p : image.pixels()) p = glm::vec3(p.x);
+    // A data window inside a larger display window (starting at 0, 0) is a region of that frame.
+    const Imath::Box2i displayWindow = file.header().displayWindow();
+    if (displayWindow != dataWindow && displayWindow.min == Imath::V2i(0, 0) && displayWindow.intersects(dataWindow.min) &&
+        displayWindow.intersects(dataWindow.max))
+        image.place({dataWindow.min.x, dataWindow.min.y, displayWindow.max.x + 1, displayWindow.max.y + 1});
     return image;
 }
 

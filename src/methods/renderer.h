@@ -1,6 +1,7 @@
 #pragma once
 
 #include "image/image.h"
+#include "raster/screen_triangle.h"
 #include "scene/scene.h"
 #include "scene/shading.h"
 #include "util/progress.h"
@@ -30,6 +31,10 @@ struct RenderSettings {
     // thread's share itself, whatever is resident (tests make a scene overflow a known share).
     std::uint64_t memoryBudgetMB = kDefaultMemoryBudgetMB;
     std::uint64_t tileShareBytes = 0;
+    // Only these pixels (inclusive bounds) are asked for: a method may leave the others
+    // unrendered, but every pixel inside must be what the whole frame's render gives it, to the
+    // bit (a region render; the caller crops). None: the whole image.
+    std::optional<raster::PixelBounds> region;
 };
 
 // Where a render reports how it went.

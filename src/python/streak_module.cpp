@@ -7,7 +7,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace py = pybind11;
@@ -164,10 +166,11 @@ PYBIND11_MODULE(streak, m) {
     m.def(
         "render",
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
-           const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB) -> py::object {
+           const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
             s.memoryBudgetMB = memoryBudgetMB;
+            if (region) s.region = sk::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
             const sk::Scene sc = sceneOf(scene);
             sk::RenderResult result;
             {
@@ -179,9 +182,10 @@ PYBIND11_MODULE(streak, m) {
         },
         py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
         py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
-        py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB,
+        py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(),
         "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
-        "memory_budget_mb: what the exact methods' tile lists keep within");
+        "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
+        "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -16,9 +17,12 @@ namespace streak::raster {
 // TileGrid splits the image into square tiles and bins items (triangles) by their pixel bounds,
 // keeping submission order within each tile. Tiles are then processed in parallel: each owns its
 // pixels, so per-pixel state needs no locks, and the result does not depend on thread count.
+// Given a region (a border render), only the tiles holding its pixels are active: the others get
+// no items and are never visited. The tiles stay where the whole image puts them, with the same
+// items in the same order, so the region's pixels are the whole render's to the bit.
 class TileGrid {
 public:
-    TileGrid(const Viewport& viewport, int tileSize);
+    TileGrid(const Viewport& viewport, int tileSize, const std::optional<PixelBounds>& region = std::nullopt);
 
     int tileSize() const { return m_tileSize; }
     int numTiles() const { return m_tilesX * m_tilesY; }
@@ -32,23 +36,27 @@ public:
         return {m_items.data() + m_offsets[tile], m_offsets[tile + 1] - m_offsets[tile]};
     }
 
-    // Calls f(tile) for every tile with at least one item (or every tile if includeEmpty), in
-    // parallel.
+    // Calls f(tile) for every active tile with at least one item (or every active tile if
+    // includeEmpty), in parallel.
     template <class F>
     void forEachTile(F&& f, bool includeEmpty = false) const {
         tbb::parallel_for(tbb::blocked_range<int>(0, numTiles(), 1), [&](const tbb::blocked_range<int>& r) {
             for (int tile = r.begin(); tile != r.end(); ++tile)
-                if (includeEmpty || !items(tile).empty()) f(tile);
+                if (isActive(tile) && (includeEmpty || !items(tile).empty())) f(tile);
         });
     }
+    // Whether the tile holds pixels of the region (every tile without one).
+    bool isActive(int tile) const;
 
 private:
     PixelBounds tileRange(const PixelBounds& pixels) const;
+    PixelBounds activeTileRange(const PixelBounds& pixels) const;  ///< tileRange within the active tiles
 
     Viewport m_viewport;
     int m_tileSize;
     int m_tilesX;
     int m_tilesY;
+    PixelBounds m_active;               ///< the active tiles (tile coordinates)
     std::vector<std::size_t> m_offsets;  ///< numTiles + 1, into m_items (CSR layout)
     std::vector<std::uint32_t> m_items;
 };
@@ -58,7 +66,7 @@ void TileGrid::bin(std::size_t count, BoundsOf&& bounds) {
     std::vector<std::size_t>& offsets = m_offsets;
     offsets.assign(std::size_t(numTiles()) + 1, 0);
     for (std::size_t i = 0; i < count; ++i) {
-        const PixelBounds t = tileRange(bounds(i));
+        const PixelBounds t = activeTileRange(bounds(i));
         for (int ty = t.y0; ty <= t.y1; ++ty)
             for (int tx = t.x0; tx <= t.x1; ++tx) ++offsets[std::size_t(ty) * m_tilesX + tx + 1];
     }
@@ -66,7 +74,7 @@ void TileGrid::bin(std::size_t count, BoundsOf&& bounds) {
     m_items.resize(offsets.back());
     std::vector<std::size_t> cursor(offsets.begin(), offsets.end() - 1);
     for (std::size_t i = 0; i < count; ++i) {
-        const PixelBounds t = tileRange(bounds(i));
+        const PixelBounds t = activeTileRange(bounds(i));
         for (int ty = t.y0; ty <= t.y1; ++ty)
             for (int tx = t.x0; tx <= t.x1; ++tx) m_items[cursor[std::size_t(ty) * m_tilesX + tx]++] = std::uint32_t(i);
     }

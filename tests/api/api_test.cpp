@@ -140,6 +140,40 @@ TEST(Api, ARendererKeptBetweenRendersGivesTheSameImages) {
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);
 }
 
+// A region render is the whole render's pixels there, placed in the frame, and stitch() joins
+// regions back into the whole frame, refusing regions that overlap or leave a pixel out.
+TEST(Api, RegionsAreTheWholeFramesPixelsAndStitchBack) {
+    const sk::Scene scene = sk::Scene::load("builtin:cubes?n=20");
+    sk::RenderSettings settings;
+    settings.method = "analytic", settings.width = 40, settings.height = 30, settings.aa = 2;
+    const sk::Image whole = sk::render(scene, settings).image;
+    EXPECT_FALSE(whole.isRegion());
+    std::vector<sk::Image> parts;
+    for (const sk::Region r : {sk::Region{0, 0, 40, 7}, sk::Region{0, 7, 23, 30}, sk::Region{23, 7, 40, 30}}) {
+        settings.region = r;
+        const sk::RenderResult result = sk::render(scene, settings);
+        const sk::Image& part = result.image;
+        ASSERT_TRUE(part.isRegion());
+        EXPECT_EQ(part.x, r.x0); EXPECT_EQ(part.y, r.y0); EXPECT_EQ(part.frameWidth, 40); EXPECT_EQ(part.frameHeight, 30);
+        ASSERT_EQ(part.width, r.x1 - r.x0); ASSERT_EQ(part.height, r.y1 - r.y0);
+        EXPECT_EQ(result.stats.info.at("region"), std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) + "," + std::to_string(r.y1));
+        for (int y = 0; y < part.height; ++y)
+            for (int x = 0; x < part.width; ++x)
+                for (int c = 0; c < 3; ++c) ASSERT_EQ(part.at(x, y, c), whole.at(part.x + x, part.y + y, c));
+        parts.push_back(part);
+    }
+    const sk::Image stitched = sk::stitch({parts[2], parts[0], parts[1]});
+    EXPECT_FALSE(stitched.isRegion());
+    EXPECT_EQ(stitched.rgb, whole.rgb);
+    EXPECT_THROW(sk::stitch({parts[0], parts[1]}), streak::Error);            // a gap
+    EXPECT_THROW(sk::stitch({parts[0], parts[1], parts[2], parts[1]}), streak::Error);  // an overlap
+    EXPECT_THROW(sk::stitch({whole}), streak::Error);                        // not a region
+    settings.region = sk::Region{0, 0, 41, 30};
+    EXPECT_THROW(sk::Renderer{settings}, streak::Error);
+    settings.region = sk::Region{5, 5, 5, 9};
+    EXPECT_THROW(sk::Renderer{settings}, streak::Error);
+}
+
 // Display-space differences in closed form: one of two pixels off by a whole level in every
 // channel is MSE 1/2 (3.01 dB) over the image and MSE 1 (0 dB) over the foreground, that pixel.
 TEST(Api, ComparesInClosedFormAndDrawsTheHeatmap) {

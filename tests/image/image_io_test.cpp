@@ -9,6 +9,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 #include <half.h>
@@ -221,6 +222,39 @@ TEST(ImageIo, ExrDataWindowOffset) {
     for (int y = 0; y < 2; ++y)
         for (int x = 0; x < 4; ++x)
             EXPECT_EQ(image.at(x, y), glm::vec3('R', 'G', 'B') + glm::vec3(10.0f * x + 100.0f * y));
+}
+
+// A region of a frame (a border render) is written as its data window inside the frame's
+// display window, as compositors read it, and read back placed; PNG, which has no windows, gets
+// the region's pixels alone. An image that does not fit its frame is refused.
+TEST(ImageIo, ExrRegionKeepsItsPlaceInTheFrame) {
+    TempDir dir;
+    Image frame(10, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 10; ++x) frame.at(x, y) = glm::vec3(0.01f * x, 0.1f * y, 0.5f);
+    const Image region = frame.region(5, 4, 8, 6);
+    ASSERT_TRUE(region.placement().has_value());
+    writeImage(region, dir.file("region.exr"));
+    {
+        Imf::InputFile raw(dir.file("region.exr").c_str());
+        EXPECT_EQ(raw.header().displayWindow(), Imath::Box2i({0, 0}, {9, 7}));
+        EXPECT_EQ(raw.header().dataWindow(), Imath::Box2i({5, 4}, {7, 5}));
+    }
+    const Image back = readImage(dir.file("region.exr"));
+    ASSERT_EQ(back.width(), 3);
+    ASSERT_EQ(back.height(), 2);
+    ASSERT_TRUE(back.placement().has_value());
+    EXPECT_EQ(back.placement()->x, 5); EXPECT_EQ(back.placement()->y, 4);
+    EXPECT_EQ(back.placement()->frameWidth, 10); EXPECT_EQ(back.placement()->frameHeight, 8);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) EXPECT_EQ(back.at(x, y), frame.at(5 + x, 4 + y));
+    EXPECT_FALSE(readImage((writeImage(frame, dir.file("frame.exr")), dir.file("frame.exr"))).placement().has_value());
+    writeImage(region, dir.file("region.png"));
+    EXPECT_EQ(readImage(dir.file("region.png")).width(), 3);
+
+    Image loose(3, 2);
+    expectError([&] { loose.place({8, 0, 10, 8}); }, {"does not lie inside a 10x8 frame"});
+    expectError([&] { (void)frame.region(5, 4, 11, 6); }, {"not inside the 10x8 image"});
 }
 
 TEST(ImageIo, OverwritesExistingFile) {

@@ -38,6 +38,19 @@ class RenderTest(unittest.TestCase):
             self.assertEqual(image.dtype, np.float32)
             self.assertTrue(np.array_equal(image, streak.read_image(path)))
 
+    def test_region_is_the_slice_of_the_whole_image(self):
+        whole = streak.render("builtin:spin", method="motion-path", width=64, height=48, aa=2)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "region.exr")
+            subprocess.run([CLI, "render", "builtin:spin", "--width", "64", "--height", "48", "--aa", "2", "--region", "10,5,50,31", "-o", path],
+                           check=True)
+            region = streak.render("builtin:spin", method="motion-path", width=64, height=48, aa=2, region=(10, 5, 50, 31))
+            self.assertEqual(region.shape, (26, 40, 3))
+            self.assertTrue(np.array_equal(region, whole[5:31, 10:50]))
+            self.assertTrue(np.array_equal(region, streak.read_image(path)))
+        with self.assertRaises(streak.Error):
+            streak.render("builtin:spin", width=64, height=48, region=(0, 0, 65, 48))
+
     @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
     def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):
         # Scene.load takes the CLI's motion flags: chosen Bezier pieces render as the CLI's do.

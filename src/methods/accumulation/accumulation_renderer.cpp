@@ -24,7 +24,7 @@ public:
         const raster::Viewport viewport{settings.width, settings.height};
         const raster::SamplePattern pattern = raster::samplePatternFor(settings.aa, settings.isGridPattern);
         const float aspect = float(settings.width) / float(settings.height);
-        raster::TileGrid grid(viewport, kTileSize);
+        raster::TileGrid grid(viewport, kTileSize, settings.region);
         std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
         tbb::enumerable_thread_specific<exposure::InstantScratch> scratch;
         exposure::InstantFrame slice;

@@ -72,7 +72,7 @@ public:
             frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
-        raster::TileGrid grid(viewport, kTileSize);
+        raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         const std::vector<glm::vec3> image = exposure::runTilePass(

@@ -27,7 +27,7 @@ public:
         const FlatGeometry geometry(drawn);
         const raster::Viewport viewport{settings.width, settings.height};
         const raster::SamplePattern pattern = raster::samplePatternFor(settings.aa, settings.isGridPattern);
-        raster::TileGrid grid(viewport, kTileSize);
+        raster::TileGrid grid(viewport, kTileSize, settings.region);
         exposure::InstantFrame frame;
         frame.setup(geometry, 1.0f, viewport, float(settings.width) / float(settings.height));
         grid.bin(frame.triangles.size(), [&](std::size_t i) { return frame.triangles[i].screen.bounds; });

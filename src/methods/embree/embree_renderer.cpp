@@ -114,12 +114,15 @@ public:
         Image image(width, height);
         std::atomic<std::int64_t> rays{0}, overflowSamples{0};
         PhaseTimer timer(context.stats, "trace+shade");
-        tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), [&](const tbb::blocked_range<int>& rows) {
+        // A region render traces its pixels only: each pixel's rays are seeded by the pixel, not by
+        // what was traced before it.
+        const raster::PixelBounds pixels = settings.region.value_or(raster::PixelBounds{0, 0, width - 1, height - 1});
+        tbb::parallel_for(tbb::blocked_range<int>(pixels.y0, pixels.y1 + 1, 1), [&](const tbb::blocked_range<int>& rows) {
             std::vector<std::pair<unsigned, unsigned>> skipped;
             std::int64_t localRays = 0, localOverflow = 0;
             for (int py = rows.begin(); py != rows.end(); ++py) {
                 const ShutterWindow window = scene.shutter.rowWindow(py, height);  // times stratified in its exposure
-                for (int px = 0; px < width; ++px) {
+                for (int px = pixels.x0; px <= pixels.x1; ++px) {
                     glm::vec3 sum(0.0f);
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(width) + std::uint64_t(px);
                     for (int a = 0; a < spp; ++a) {

@@ -81,7 +81,7 @@ public:
                 frame.bounds[i] = u.x1 < 0 ? raster::PixelBounds{} : u;
             }
         }
-        raster::TileGrid grid(viewport, kTileSize);
+        raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         const std::vector<glm::vec3> image = exposure::runTilePass(

@@ -116,7 +116,7 @@ public:
             PhaseTimer timer(context.stats, "generate");
             frame.generate();
         }
-        raster::TileGrid grid(frame.viewport, kTileSize);
+        raster::TileGrid grid(frame.viewport, kTileSize, settings.region);
         {
             PhaseTimer timer(context.stats, "bin");
             grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });

@@ -50,7 +50,7 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const Frame frame(scene, settings);
-        raster::TileGrid grid(frame.viewport, kTileSize);
+        raster::TileGrid grid(frame.viewport, kTileSize, settings.region);
         std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
         std::vector<raster::PixelBounds> bounds(frame.geometry.triangles().size());
         tbb::enumerable_thread_specific<TileScratch> scratch;
