@@ -1,5 +1,6 @@
 // streak: the command line, a client of the public API (include/streak/) only. The only place
-// where an Error becomes one stderr line and exit 2.
+// where an Error becomes one stderr line and exit 2 (bad input), or 1 (RenderFailure: the input
+// was good, the machine could not make the render).
 
 #include <streak/streak.h>
 
@@ -12,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +34,20 @@ namespace {
 namespace sk = streak::api;
 
 constexpr int kExitBadInput = 2;
+constexpr int kExitRenderFailed = 1;  ///< the input was good, the render could not be made (RenderFailure)
+
+// Runs write, a write of an output whose path was accepted before the render: a failure now (a
+// full disk, a quota) is the render's, not the input's.
+template <class Write>
+void writeAccepted(Write&& write) {
+    try {
+        write();
+    } catch (const RenderFailure&) {
+        throw;
+    } catch (const Error& e) {
+        throw RenderFailure(e.what());
+    }
+}
 
 // A one-line progress bar on stderr, drawn only when stderr is a terminal.
 // Progress on stderr: a bar redrawn in place when stderr is a terminal; with --progress-lines,
@@ -122,6 +138,20 @@ std::array<float, 3> parseColor(const std::string& text) {
     return c;
 }
 
+// --region x0,y0,x1,y1: four whole numbers.
+sk::Region parseRegion(const std::string& text) {
+    int v[4];
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    for (int i = 0; i < 4; ++i) {
+        const auto [next, ec] = std::from_chars(p, end, v[i]);
+        if (ec != std::errc() || (i < 3 ? next == end || *next != ',' : next != end))
+            throw Error("--region must be four whole numbers x0,y0,x1,y1 (pixels [x0, x1) x [y0, y1)), got '" + text + "'");
+        p = next + 1;
+    }
+    return {v[0], v[1], v[2], v[3]};
+}
+
 struct RenderArgs {
     std::string scene = "builtin:cubes";
     std::string method = "motion-path";
@@ -173,6 +203,9 @@ struct RenderArgs {
     std::optional<std::string> cameraPosEnd;
     std::optional<std::string> cameraTargetEnd;
     std::optional<float> fov;
+    std::optional<std::string> pointCache;
+    std::optional<std::string> pointCacheMesh;
+    std::optional<std::string> pointCacheSpace;
 };
 
 // The load options from the flags; Error for a glTF flag given with a built-in scene or a camera
@@ -186,7 +219,9 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
         {"--motion-curve-order", args.motionCurveOrder.has_value()}, {"--key-tolerance", args.keyTolerance.has_value()}, {"--camera", args.camera.has_value()},
         {"--camera-pos", args.cameraPos.has_value()}, {"--camera-target", args.cameraTarget.has_value()},
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
-        {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()}};
+        {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()},
+        {"--point-cache", args.pointCache.has_value()}, {"--point-cache-mesh", args.pointCacheMesh.has_value()},
+        {"--point-cache-space", args.pointCacheSpace.has_value()}};
     for (const auto& [flag, given] : flags)
         if (given && !isGltf) throw Error(std::string(flag) + " applies to glTF scenes (.gltf, .glb) only");
     sk::LoadOptions options;
@@ -206,6 +241,12 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
         throw Error("--motion-curve-order takes --motion-curve bezier without --motion-keys (the degree of the chosen pieces)");
     options.motionCurveOrder = args.motionCurveOrder.value_or(options.motionCurveOrder);
     options.keyTolerancePixels = args.keyTolerance.value_or(options.keyTolerancePixels);
+    if ((args.pointCacheMesh || args.pointCacheSpace) && !args.pointCache) throw Error("--point-cache-mesh and --point-cache-space need --point-cache");
+    options.pointCache = args.pointCache.value_or("");
+    options.pointCacheMesh = args.pointCacheMesh.value_or("");
+    if (args.pointCacheSpace && *args.pointCacheSpace != "object" && *args.pointCacheSpace != "world")
+        throw Error("--point-cache-space must be object or world, got '" + *args.pointCacheSpace + "'");
+    options.pointCacheSpace = args.pointCacheSpace.value_or(options.pointCacheSpace);
     options.width = args.width;
     options.height = args.height;
     options.camera = args.camera;
@@ -338,16 +379,7 @@ int runRender(const RenderArgs& args) {
     settings.seed = args.seed;
     settings.threads = args.threads;
     settings.memoryBudgetMB = args.memoryBudget;
-    if (args.region) {
-        sk::Region r;
-        char extra = 0;
-        if (std::sscanf(args.region->c_str(), "%d,%d,%d,%d%c", &r.x0, &r.y0, &r.x1, &r.y1, &extra) != 4)
-            throw Error("--region must be four whole numbers x0,y0,x1,y1 (pixels [x0, x1) x [y0, y1)), got '" + *args.region + "'");
-        if (!(r.x0 >= 0 && r.y0 >= 0 && r.x0 < r.x1 && r.y0 < r.y1 && r.x1 <= args.width && r.y1 <= args.height))
-            throw Error("--region " + *args.region + " is not a rectangle inside the " + std::to_string(args.width) + "x" + std::to_string(args.height) +
-                        " image (x0,y0,x1,y1: pixels [x0, x1) x [y0, y1))");
-        settings.region = r;
-    }
+    if (args.region) settings.region = parseRegion(*args.region);  // the Renderer checks it lies in the image
     // Method-specific flags become the method's options; a method rejects those it does not take.
     const std::pair<const char*, const std::optional<int>*> methodFlags[] = {
         {"samples", &args.samples}, {"max-fragments", &args.maxFragments}, {"max-intervals", &args.maxIntervals},
@@ -410,11 +442,11 @@ int runRender(const RenderArgs& args) {
             sk::Stats& stats = result.stats;
             stats.counters["repeat"] = args.repeat;
             if (list.isSequence) stats.counters["frame"] = list.frames[f];
-            sk::writeImage(result.image, outputs[f]);
+            writeAccepted([&] { sk::writeImage(result.image, outputs[f]); });
             stats.timesMs.emplace_back("total", std::chrono::duration<double, std::milli>(Clock::now() - start).count());
             if (isStatsPerFrame) {
                 try {
-                    writeTextFile(statsPaths[f], stats.json());
+                    writeAccepted([&] { writeTextFile(statsPaths[f], stats.json()); });
                 } catch (const Error&) {
                     std::filesystem::remove(outputs[f]);  // all or nothing, per frame
                     throw;
@@ -437,7 +469,7 @@ int runRender(const RenderArgs& args) {
             text += "\n]}\n";
         }
         try {
-            writeTextFile(args.stats, text);
+            writeAccepted([&] { writeTextFile(args.stats, text); });
         } catch (const Error&) {
             if (!list.isSequence) std::filesystem::remove(outputs.front());  // all or nothing
             throw;
@@ -482,8 +514,7 @@ int runStitch(const std::string& output, const std::vector<std::string>& inputs)
     std::vector<sk::Image> regions;
     for (const std::string& path : inputs) {
         if (lowercaseExtension(path) != ".exr") throw Error("cannot stitch " + path + ": stitch joins EXR regions (a PNG does not say where its region lies)");
-        regions.push_back(sk::readImage(path));
-        if (!regions.back().isRegion()) throw Error("cannot stitch " + path + ": it is a whole frame, not a region (render regions with --region to .exr)");
+        regions.push_back(sk::readImage(path));  // a whole frame is the region covering it
     }
     const sk::Image frame = sk::stitch(regions);
     sk::writeImage(frame, output);
@@ -549,6 +580,12 @@ void addGltfFlags(CLI::App* app, RenderArgs& args) {
     app->add_option("--camera-pos-end", args.cameraPosEnd, "glTF: camera position at shutter close (moves linearly)");
     app->add_option("--camera-target-end", args.cameraTargetEnd, "glTF: camera target at shutter close");
     app->add_option("--fov", args.fov, "glTF: explicit camera vertical field of view in degrees (45)");
+    app->add_option("--point-cache", args.pointCache,
+                    "glTF: a PC2 or MDD point cache (Blender's Mesh Cache) moving one mesh: its triangle primitives' vertices, in order, "
+                    "take the cache's points instead of its skin and morph targets (PC2 frames at --fps from its start frame; MDD times in seconds)");
+    app->add_option("--point-cache-mesh", args.pointCacheMesh, "glTF: the node or mesh name the point cache moves (default: the scene's only mesh)");
+    app->add_option("--point-cache-space", args.pointCacheSpace,
+                    "glTF: object (the cache's points are in the node's space, which its transform places) or world (object)");
 }
 
 int run(int argc, char** argv) {
@@ -680,6 +717,9 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
     try {
         return streak::run(argc, argv);
+    } catch (const streak::RenderFailure& e) {
+        std::cerr << "streak: error: " << e.what() << "\n";
+        return streak::kExitRenderFailed;
     } catch (const streak::Error& e) {
         std::cerr << "streak: error: " << e.what() << "\n";
         return streak::kExitBadInput;

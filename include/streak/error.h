@@ -13,4 +13,13 @@ public:
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+// RenderFailure is an Error the input did not cause: the machine could not make the render (no
+// OpenGL context, a driver, shader or Embree failure, an image that could not be written once
+// its path was accepted). The command line exits with code 1 on it, 2 on any other Error, so a
+// farm manager can retry a failure elsewhere and not retry bad input.
+class RenderFailure : public Error {
+public:
+    explicit RenderFailure(const std::string& message) : Error(message) {}
+};
+
 }  // namespace streak

@@ -25,9 +25,9 @@ struct Image {
 // PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing.
 void writeImage(const Image& image, const std::string& path);
 Image readImage(const std::string& path);
-// Joins regions of one frame (each placed in it: isRegion) into the whole frame, each pixel from
-// the one region that holds it. Throws Error unless every region lies in a frame of one size and
-// together they cover each of its pixels exactly once.
+// Joins regions of one frame (each placed in it: isRegion; a whole frame is the region covering
+// it) into the whole frame, each pixel from the one region that holds it. Throws Error unless
+// every region lies in a frame of one size and together they cover each of its pixels once.
 Image stitch(const std::vector<Image>& regions);
 
 // Throws Error unless the path ends in an image extension writeImage knows (.png, .exr), so a

@@ -47,7 +47,9 @@ struct RenderSettings {
     int width = 1024, height = 768;
     // Render only this rectangle of the width x height image: the result is its pixels, placed
     // in the frame (Image::isRegion), each bit for bit the whole frame's, so regions rendered
-    // apart (on other machines) stitch() into the whole frame without seams.
+    // apart (on other machines) stitch() into the whole frame without seams. (Unless the
+    // memory budget cuts a pixel's lists, memory_budget_pixels_cut: the cut depends on the
+    // memory the process holds.)
     std::optional<Region> region;
     int aa = 1;
     bool sampleGrid = false;

@@ -104,6 +104,16 @@ struct LoadOptions {
     std::optional<int> camera;              ///< --camera: a glTF camera by index
     std::optional<LookAt> lookAt;           ///< --camera-pos etc.: an explicit camera instead
     int width = 1024, height = 768;         ///< the image the scene is framed for (aspect, key tolerance)
+    // --point-cache: a PC2 or MDD file (Blender's Mesh Cache formats) that moves one mesh of a
+    // glTF scene: the vertices of its triangle primitives, in order, take the cache's points in
+    // place of its skin and morph targets; PC2's frames count at fps from its start frame, MDD's
+    // times are seconds. The mesh is named by its node's or its own name (--point-cache-mesh;
+    // empty: the scene's only mesh); the points lie in its node's space ("object": the node's
+    // animated transform places them) or in world space ("world"). They follow the glTF's
+    // vertex order, its primitives' POSITION arrays one after another.
+    std::string pointCache;
+    std::string pointCacheMesh;
+    std::string pointCacheSpace = "object";
     // Every scene: how the shutter is exposed (Scene::withShutter changes it later), and the
     // background colour (linear RGB) instead of the scene's own.
     Shutter shutter;

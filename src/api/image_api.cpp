@@ -5,7 +5,7 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 
-#include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,20 +31,27 @@ streak::Image imageOf(const Image& in) {
 
 Image stitch(const std::vector<Image>& regions) {
     if (regions.empty()) throw Error("stitch: no regions");
+    // A whole frame is the region that covers it (a --region of the whole image reads back so).
+    const auto frameWidth = [](const Image& r) { return r.isRegion() ? r.frameWidth : r.width; };
+    const auto frameHeight = [](const Image& r) { return r.isRegion() ? r.frameHeight : r.height; };
     const auto placed = [](const Image& r) { return std::to_string(r.width) + "x" + std::to_string(r.height) + " at " + std::to_string(r.x) + "," + std::to_string(r.y); };
+    const int width = frameWidth(regions.front()), height = frameHeight(regions.front());
+    if (width > kMaxImageSize || height > kMaxImageSize)
+        throw Error("stitch: a " + std::to_string(width) + "x" + std::to_string(height) + " frame is larger than streak renders (" + std::to_string(kMaxImageSize) + " pixels a side)");
     std::vector<streak::Image> in;
+    std::uint64_t area = 0;
     for (const Image& r : regions) {
-        if (!r.isRegion()) throw Error("stitch: a " + std::to_string(r.width) + "x" + std::to_string(r.height) + " image is not a region of a frame (render it with a region, to EXR)");
-        if (r.frameWidth != regions.front().frameWidth || r.frameHeight != regions.front().frameHeight)
-            throw Error("stitch: the regions belong to frames of different sizes (" + std::to_string(regions.front().frameWidth) + "x" +
-                        std::to_string(regions.front().frameHeight) + " and " + std::to_string(r.frameWidth) + "x" + std::to_string(r.frameHeight) + ")");
+        if (frameWidth(r) != width || frameHeight(r) != height)
+            throw Error("stitch: the regions belong to frames of different sizes (" + std::to_string(width) + "x" + std::to_string(height) + " and " +
+                        std::to_string(frameWidth(r)) + "x" + std::to_string(frameHeight(r)) + ")");
         in.push_back(imageOf(r));  // checks the size and that it lies in its frame
+        area += std::uint64_t(r.width) * std::uint64_t(r.height);
     }
-    const int width = regions.front().frameWidth, height = regions.front().frameHeight;
+    const std::uint64_t frameArea = std::uint64_t(width) * std::uint64_t(height);
     streak::Image frame(width, height);
-    std::vector<int> owner(std::size_t(width) * std::size_t(height), -1);
-    for (std::size_t k = 0; k < in.size(); ++k) {
-        const FramePlacement& p = *in[k].placement();
+    std::vector<int> owner(area == frameArea ? frameArea : 0, -1);
+    for (std::size_t k = 0; k < in.size() && area == frameArea; ++k) {
+        const FramePlacement p = in[k].placement().value_or(FramePlacement{0, 0, width, height});
         for (int y = 0; y < in[k].height(); ++y)
             for (int x = 0; x < in[k].width(); ++x) {
                 int& o = owner[std::size_t(p.y + y) * std::size_t(width) + std::size_t(p.x + x)];
@@ -55,11 +62,10 @@ Image stitch(const std::vector<Image>& regions) {
                 frame.at(p.x + x, p.y + y) = in[k].at(x, y);
             }
     }
-    if (const auto gap = std::find(owner.begin(), owner.end(), -1); gap != owner.end()) {
-        const std::size_t i = std::size_t(gap - owner.begin());
-        throw Error("stitch: the regions do not cover the " + std::to_string(width) + "x" + std::to_string(height) + " frame: pixel " +
-                    std::to_string(i % std::size_t(width)) + "," + std::to_string(i / std::size_t(width)) + " is in none");
-    }
+    // Regions that cover each pixel once have the frame's area; more overlap, fewer leave a gap.
+    if (area != frameArea)
+        throw Error("stitch: the regions' " + std::to_string(area) + " pixels " + (area > frameArea ? "overlap in" : "do not cover") + " the " +
+                    std::to_string(width) + "x" + std::to_string(height) + " frame (" + std::to_string(frameArea) + " pixels)");
     return imageOf(frame);
 }
 

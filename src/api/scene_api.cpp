@@ -108,6 +108,10 @@ GltfOptions gltfOptionsOf(const LoadOptions& o) {
     gltf.imageHeight = o.height;
     gltf.aspect = float(o.width) / float(o.height);
     gltf.camera = o.camera;
+    if (o.pointCacheSpace != "object" && o.pointCacheSpace != "world")
+        throw Error("point cache space must be object or world, got '" + o.pointCacheSpace + "'");
+    if (!o.pointCache.empty()) gltf.pointCache = GltfPointCache{o.pointCache, o.pointCacheMesh, o.pointCacheSpace == "world"};
+    else if (!o.pointCacheMesh.empty() || o.pointCacheSpace != "object") throw Error("point cache mesh and space need a point cache");
     if (o.lookAt) {
         GltfLookAt look;
         look.position = vec3(o.lookAt->position);
@@ -150,6 +154,7 @@ Scene Scene::load(const std::string& spec, const LoadOptions& options) {
     auto impl = std::make_shared<Impl>();
     impl->spec = spec;
     impl->isGltf = isGltfSpec(spec);
+    if (!options.pointCache.empty() && !impl->isGltf) throw Error("a point cache applies to glTF scenes (.gltf, .glb) only");
     GltfOptions gltf = gltfOptionsOf(options);
     const ShutterPosition position = parseShutterPosition(options.shutterPosition);
     impl->shutterPosition = shutterPositionName(position);

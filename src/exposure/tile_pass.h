@@ -40,7 +40,7 @@ std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raste
     std::vector<glm::vec3> image(std::size_t(width) * std::size_t(height), background);
     {
         PhaseTimer timer(stats, "tiles");
-        PartsProgress tiles(progress, std::size_t(grid.numTiles()));
+        PartsProgress tiles(progress, std::size_t(grid.numActiveTiles()));
         grid.forEachTile(
             [&](int tile) {
                 renderTile(tile, scratch.local(), image);

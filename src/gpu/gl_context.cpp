@@ -28,7 +28,7 @@ struct GlContext::Egl {
 GlContext::GlContext() : m_egl(std::make_unique<Egl>()) {
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!hasExtension(clientExtensions, "EGL_EXT_platform_base"))
-        throw Error("no OpenGL context: EGL lacks EGL_EXT_platform_base (is libEGL with a driver installed?)");
+        throw RenderFailure("no OpenGL context: EGL lacks EGL_EXT_platform_base (is libEGL with a driver installed?)");
 
     // eglGetPlatformDisplayEXT, not eglGetPlatformDisplay: epoxy aborts on the latter with
     // Debian 12's Mesa.
@@ -59,21 +59,21 @@ GlContext::GlContext() : m_egl(std::make_unique<Egl>()) {
     }
     if (!isInitialized && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless"))
         isInitialized = tryInitialize(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, "surfaceless");
-    if (!isInitialized) throw Error("no OpenGL context: no EGL device or surfaceless display could be initialized");
+    if (!isInitialized) throw RenderFailure("no OpenGL context: no EGL device or surfaceless display could be initialized");
 
-    if (!eglBindAPI(EGL_OPENGL_API)) throw Error("no OpenGL context: EGL cannot bind desktop OpenGL");
+    if (!eglBindAPI(EGL_OPENGL_API)) throw RenderFailure("no OpenGL context: EGL cannot bind desktop OpenGL");
     const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint numConfigs = 0;
     const bool hasConfig = eglChooseConfig(m_egl->display, configAttributes, &config, 1, &numConfigs) && numConfigs > 0;
     if (!hasExtension(eglQueryString(m_egl->display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
-        throw Error("no OpenGL context: EGL lacks EGL_KHR_surfaceless_context");
+        throw RenderFailure("no OpenGL context: EGL lacks EGL_KHR_surfaceless_context");
     const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     m_egl->context = eglCreateContext(m_egl->display, hasConfig ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, contextAttributes);
     if (m_egl->context == EGL_NO_CONTEXT) {
         eglTerminate(m_egl->display);
-        throw Error("no OpenGL context: the " + m_platform + " EGL display cannot make an OpenGL 4.5 core context");
+        throw RenderFailure("no OpenGL context: the " + m_platform + " EGL display cannot make an OpenGL 4.5 core context");
     }
     makeCurrent();
     m_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -89,7 +89,7 @@ GlContext::~GlContext() {
 
 void GlContext::makeCurrent() const {
     if (!eglMakeCurrent(m_egl->display, EGL_NO_SURFACE, EGL_NO_SURFACE, m_egl->context))
-        throw Error("OpenGL: cannot make the EGL context current");
+        throw RenderFailure("OpenGL: cannot make the EGL context current");
 }
 
 GlContext& sharedContext() {

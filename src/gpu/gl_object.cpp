@@ -29,7 +29,7 @@ void checkGlError(const std::string& what) {
                        : error == GL_INVALID_OPERATION ? "invalid operation"
                        : error == GL_INVALID_ENUM ? "invalid enum"
                                                   : "error";
-    throw Error("OpenGL " + std::string(name) + " (0x" + [&] {
+    throw RenderFailure("OpenGL " + std::string(name) + " (0x" + [&] {
         char hex[16];
         std::snprintf(hex, sizeof hex, "%04x", error);
         return std::string(hex);

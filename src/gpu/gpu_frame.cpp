@@ -24,7 +24,7 @@ SampleFramebuffer::SampleFramebuffer(const SampleGrid& grid)
     glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, color.id(), 0);
     glNamedFramebufferTexture(framebuffer.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
     if (glCheckNamedFramebufferStatus(framebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("OpenGL: a sample framebuffer (RGBA32F colour, 32-bit float depth) is incomplete");
+        throw RenderFailure("OpenGL: a sample framebuffer (RGBA32F colour, 32-bit float depth) is incomplete");
 }
 
 }  // namespace streak::gpu

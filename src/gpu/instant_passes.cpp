@@ -38,7 +38,7 @@ InstantPasses::InstantPasses(const GpuFrame& frame, const TranslucentOptions& tr
     glNamedFramebufferTexture(m_sumTarget.id(), GL_COLOR_ATTACHMENT0, m_sum.id(), 0);
     glNamedFramebufferTexture(m_sumTarget.id(), GL_DEPTH_ATTACHMENT, m_target.depth.id(), 0);
     if (glCheckNamedFramebufferStatus(m_sumTarget.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw Error("OpenGL: the blend target (RGBA32F sum, 32-bit float depth) is incomplete");
+        throw RenderFailure("OpenGL: the blend target (RGBA32F sum, 32-bit float depth) is incomplete");
 }
 
 void InstantPasses::clearSum() const {

@@ -64,7 +64,7 @@ const GlProgram& buildProgram(std::initializer_list<ShaderStage> stages, const s
         std::string stageNames;
         for (std::string_view file : stage.files) {
             const auto found = embeddedShaders().find(file);
-            if (found == embeddedShaders().end()) throw Error("OpenGL: no embedded shader '" + std::string(file) + "'");
+            if (found == embeddedShaders().end()) throw RenderFailure("OpenGL: no embedded shader '" + std::string(file) + "'");
             texts.emplace_back("#line 1 " + std::to_string(texts.size()) + "\n" + std::string(found->second));
             stageNames += (stageNames.empty() ? "" : "+") + std::string(file);
         }
@@ -74,13 +74,13 @@ const GlProgram& buildProgram(std::initializer_list<ShaderStage> stages, const s
         glShaderSource(shader.id(), GLsizei(pointers.size()), pointers.data(), nullptr);
         glCompileShader(shader.id());
         if (const std::string log = failureLog(shader.id(), GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog); !log.empty())
-            throw Error("OpenGL: shader " + stageNames + " does not compile: " + log);
+            throw RenderFailure("OpenGL: shader " + stageNames + " does not compile: " + log);
         glAttachShader(program.id(), shader.id());
         names += (names.empty() ? "" : ", ") + stageNames;
     }
     glLinkProgram(program.id());
     if (const std::string log = failureLog(program.id(), GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog); !log.empty())
-        throw Error("OpenGL: program " + names + " does not link: " + log);
+        throw RenderFailure("OpenGL: program " + names + " does not link: " + log);
     return built.emplace(key, std::move(program)).first->second;
 }
 

@@ -47,6 +47,7 @@ public:
     }
     // Whether the tile holds pixels of the region (every tile without one).
     bool isActive(int tile) const;
+    int numActiveTiles() const { return m_active.empty() ? 0 : (m_active.x1 - m_active.x0 + 1) * (m_active.y1 - m_active.y0 + 1); }
 
 private:
     PixelBounds tileRange(const PixelBounds& pixels) const;

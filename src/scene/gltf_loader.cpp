@@ -4,6 +4,7 @@
 #include "scene/gltf_animation.h"
 #include "scene/gltf_deform.h"
 #include "scene/gltf_document.h"
+#include "scene/point_cache.h"
 #include "util/error.h"
 
 #include <glm/geometric.hpp>
@@ -18,6 +19,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <tuple>
 
 namespace streak {
@@ -54,6 +56,7 @@ struct Instance {
     int skin = -1;
     const PrimitiveData* data = nullptr;
     std::string name;
+    std::optional<std::size_t> cacheFirst;  ///< moved by the point cache: its first point there
 };
 
 // A streak material made from a glTF one, and how its base-colour texture reads uvs.
@@ -132,6 +135,7 @@ public:
         chooseSceneNodes();
         readAnimation();
         collectInstances();
+        readPointCache();
         sampleKeys();
         placeCamera();
         curveKeys();
@@ -396,6 +400,74 @@ private:
         }
     }
 
+    // --point-cache: the mesh it moves (options.pointCache->mesh, a node's or a mesh's name; or
+    // the one mesh the scene instances), whose triangle primitives take its points in order.
+    void readPointCache() {
+        if (!m_options.pointCache) return;
+        const GltfPointCache& options = *m_options.pointCache;
+        m_pointCache.emplace(PointCache::read(options.path, m_options.fps, m_options.limits.maxFileBytes));
+        std::set<std::uint32_t> nodes;
+        for (const Instance& instance : m_instances) nodes.insert(instance.node);
+        auto isTarget = [&](std::uint32_t node) {
+            if (options.mesh.empty()) return nodes.size() == 1;
+            const tinygltf::Node& n = m_model.nodes[node];
+            return n.name == options.mesh || m_model.meshes[std::size_t(n.mesh)].name == options.mesh;
+        };
+        // Each node moved by it (several where they instance one named mesh) takes the points from
+        // the first, its primitives in order.
+        std::map<std::uint32_t, std::size_t> points;  // by node: the points its primitives take
+        for (Instance& instance : m_instances) {
+            if (!isTarget(instance.node)) continue;
+            std::size_t& first = points[instance.node];
+            instance.cacheFirst = first;
+            first += instance.data->geometry.numVertices();
+        }
+        if (options.mesh.empty() && nodes.size() != 1)
+            throw Error("--point-cache: the scene has " + str(nodes.size()) + " meshes; name the one it moves with --point-cache-mesh");
+        if (points.empty()) throw Error("--point-cache-mesh '" + options.mesh + "': no node or mesh of the scene has that name");
+        for (const auto& [node, count] : points)
+            if (count != m_pointCache->numPoints())
+                throw Error(options.path + ": the cache has " + str(m_pointCache->numPoints()) + " points, the mesh it moves " + str(count) + " vertices");
+        if (m_stats) {
+            m_stats->setCounter("point_cache_points", double(m_pointCache->numPoints()));
+            m_stats->setCounter("point_cache_samples", double(m_pointCache->numSamples()));
+            m_stats->setCounter("point_cache_nodes", double(points.size()));
+        }
+    }
+
+    // Whether the node's transform mirrors the instance's vertices (negative determinant): glTF
+    // 3.7.4 then turns the winding clockwise, and writeMeshes flips it back. A skinned mesh's
+    // joints place it instead, unless a point cache in the node's space does; a cache in world
+    // space holds what the animation made, so it follows the animation's rule.
+    bool isMirrored(const Instance& instance, const glm::mat4& worldFromNode) const {
+        const bool isPlacedByNode = (instance.cacheFirst && !m_options.pointCache->isWorldSpace) ||
+                                    !(instance.skin >= 0 && instance.data->geometry.isSkinned());
+        return isPlacedByNode && glm::determinant(glm::mat3(worldFromNode)) < 0.0f;
+    }
+
+    // The instance's vertices from the point cache at `time` (world space, or through the node's
+    // world transform), and normals of its triangles as they are drawn (counter-clockwise in
+    // front, after writeMeshes' flip), area-weighted, where it has normals.
+    void cachedPose(const Instance& instance, float time, const glm::mat4& worldFromNode, std::vector<glm::vec3>& positions,
+                    std::vector<glm::vec3>& normals) const {
+        const std::size_t n = instance.data->geometry.numVertices();
+        positions.resize(n);
+        m_pointCache->pointsAt(double(time), *instance.cacheFirst, n, positions);
+        if (!m_options.pointCache->isWorldSpace)
+            for (glm::vec3& p : positions) p = glm::vec3(worldFromNode * glm::vec4(p, 1.0f));
+        if (instance.data->geometry.normals.empty()) return;
+        normals.assign(n, glm::vec3(0.0f));
+        const float facing = isMirrored(instance, worldFromNode) ? -1.0f : 1.0f;
+        for (const glm::uvec3& t : instance.data->triangles) {
+            const glm::vec3 area = facing * glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x]);
+            normals[t.x] += area, normals[t.y] += area, normals[t.z] += area;
+        }
+        for (glm::vec3& v : normals) {
+            const float length = glm::length(v);
+            v = length > 0.0f ? v / length : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    }
+
     const gltf::Skin& skin(int index) {
         if (auto it = m_skins.find(index); it != m_skins.end()) return it->second;
         const tinygltf::Skin& src = m_model.skins[std::size_t(index)];
@@ -592,6 +664,11 @@ private:
         for (std::size_t i = 0; i < m_instances.size(); ++i) {
             const Instance& instance = m_instances[i];
             const std::size_t n = instance.data->geometry.numVertices(), node = instance.node;
+            if (instance.cacheFirst) {
+                // The cache holds the deformation: skin and morph targets are not applied.
+                cachedPose(instance, time, out.nodes.worldFromNode[node], out.positions[i], out.normals[i]);
+                continue;
+            }
             const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
             const bool isUnchanged = previous && out.nodes.worldFromNode[node] == previous->nodes.worldFromNode[node] &&
                                      out.nodes.weights[node] == previous->nodes.weights[node] &&
@@ -786,8 +863,7 @@ private:
             mesh.colors = data.colors;
             mesh.triangles = data.triangles;
             mesh.material = data.material;
-            const bool isSkinned = instance.skin >= 0 && data.geometry.isSkinned();
-            if (!isSkinned && glm::determinant(glm::mat3(middle.worldFromNode[instance.node])) < 0.0f)
+            if (isMirrored(instance, middle.worldFromNode[instance.node]))
                 for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
             m_scene.meshes.push_back(std::move(mesh));
         }
@@ -887,6 +963,7 @@ private:
     std::map<int, MaterialInfo> m_materials;                         ///< by glTF material index (-1: default)
     std::map<std::tuple<int, WrapMode, WrapMode>, std::uint32_t> m_textures;  ///< by (image, wraps)
     std::vector<Instance> m_instances;
+    std::optional<PointCache> m_pointCache;
     gltf::NodePoses m_openPoses, m_closePoses;
     std::size_t m_numSkipped = 0;                                    ///< primitives that are not triangles
 };

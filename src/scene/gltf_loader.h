@@ -35,6 +35,16 @@ struct GltfLimits {
     std::size_t maxVertexWork = std::size_t(1) << 30;
 };
 
+// A point cache (PC2 or MDD, scene/point_cache.h) that moves one mesh of a glTF scene: its
+// triangle primitives' vertices, in order, take the cache's points, in place of the mesh's skin
+// and morph targets (Blender's Mesh Cache modifier). The points are in the mesh node's space,
+// which the node's animated transform then places, or already in world space.
+struct GltfPointCache {
+    std::string path;
+    std::string mesh;           ///< a node's or a mesh's name; empty: the scene's one mesh
+    bool isWorldSpace = false;
+};
+
 // How to turn a glTF file into one streak scene: which stretch of which animation the shutter
 // covers, how finely to sample it, and where the camera is.
 struct GltfOptions {
@@ -60,6 +70,7 @@ struct GltfOptions {
     std::optional<GltfLookAt> lookAt;  ///< an explicit camera instead of a glTF one
     float aspect = 4.0f / 3.0f;        ///< image width / height, to frame a scene without a camera
     bool allowExternalFiles = true;    ///< whether uris may name files (memory loads can say no)
+    std::optional<GltfPointCache> pointCache;
     GltfLimits limits;
 };
 

@@ -167,7 +167,8 @@ TEST(Api, RegionsAreTheWholeFramesPixelsAndStitchBack) {
     EXPECT_EQ(stitched.rgb, whole.rgb);
     EXPECT_THROW(sk::stitch({parts[0], parts[1]}), streak::Error);            // a gap
     EXPECT_THROW(sk::stitch({parts[0], parts[1], parts[2], parts[1]}), streak::Error);  // an overlap
-    EXPECT_THROW(sk::stitch({whole}), streak::Error);                        // not a region
+    EXPECT_EQ(sk::stitch({whole}).rgb, whole.rgb);                           // a whole frame covers itself
+    EXPECT_THROW(sk::stitch({whole, parts[0]}), streak::Error);
     settings.region = sk::Region{0, 0, 41, 30};
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);
     settings.region = sk::Region{5, 5, 5, 9};

@@ -3,7 +3,9 @@
 #include "image/color.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
+#include "scene/gltf_loader.h"
 #include "support/gltf_builder.h"
+#include "support/point_cache_files.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
 
@@ -329,6 +331,51 @@ TEST(Cli, GnuParallelWorkersWithPlaceholdersRenderEachFrameOnce) {
     }
 }
 
+// Writes a point cache of poses[s] (each every point's position) as PC2 (start frame 0, one
+// sample per frame) or as MDD (sample s at s / 24 s, after a rest pose, as Blender writes it).
+void writePointCache(const std::string& path, const std::vector<std::vector<glm::vec3>>& poses, bool isMdd) {
+    std::vector<float> times;
+    for (std::size_t s = 0; s < poses.size(); ++s) times.push_back(float(s) / 24.0f);
+    test::writeBytes(path, isMdd ? test::mddBytes(poses, times, &poses.front()) : test::pc2Bytes(poses, 0.0f, 1.0f));
+}
+
+// A point cache written from CesiumMan's own skinned poses, one per frame (world space), moves
+// the mesh as the skin does: the render of frames 12 to 14 through it is within 45 dB of the
+// skinned render (the cache is linear between whole frames, the skin is not), and the same
+// poses as MDD render as the PC2 does.
+TEST(Cli, APointCacheOfCesiumMansSkinReproducesItsAnimation) {
+    STREAK_REQUIRE_SHARED_SCENES();
+    test::TempDir dir;
+    const std::string model = test::sharedScene("CesiumMan/glTF-Binary/CesiumMan.glb");
+    std::vector<std::vector<glm::vec3>> poses;
+    for (int frame = 0; frame <= 30; ++frame) {
+        GltfOptions options;
+        options.frame = frame, options.shutter = 0.0;
+        const Scene scene = loadGltf(model, options);
+        std::vector<glm::vec3>& pose = poses.emplace_back();
+        for (const Mesh& mesh : scene.meshes) pose.insert(pose.end(), mesh.positions.begin(), mesh.positions.begin() + std::ptrdiff_t(mesh.numVertices()));
+    }
+    writePointCache(dir.file("man.pc2"), poses, false);
+    writePointCache(dir.file("man.mdd"), poses, true);
+    const std::string base = "render " + model + " -m analytic --width 160 --height 120 --aa 2 --shading unlit --frame 12 --shutter 2 ";
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("skin.exr")).exitCode, 0);
+    const RunResult cached = runStreak(dir, base + "--point-cache " + dir.file("man.pc2") + " --point-cache-space world -o " + dir.file("pc2.exr") +
+                                                " --stats " + dir.file("s.json"));
+    ASSERT_EQ(cached.exitCode, 0) << cached.err;
+    ASSERT_EQ(runStreak(dir, base + "--point-cache " + dir.file("man.mdd") + " --point-cache-space world -o " + dir.file("mdd.exr")).exitCode, 0);
+    const double db = psnr(readImage(dir.file("skin.exr")), readImage(dir.file("pc2.exr")));
+    EXPECT_GE(db, 45.0);
+    EXPECT_LT(db, 200.0);  // the cache did replace the skin
+    // MDD's times are float seconds, PC2's whole frames: the same poses to the time's rounding.
+    EXPECT_GE(psnr(readImage(dir.file("pc2.exr")), readImage(dir.file("mdd.exr"))), 90.0);
+    const nlohmann::json counters = nlohmann::json::parse(readFile(dir.file("s.json")))["counters"];
+    EXPECT_EQ(counters["point_cache_samples"], 31);
+    EXPECT_EQ(counters["point_cache_points"], double(poses.front().size()));
+    // In the node's space (the default), CesiumMan's node turns the points away: not the skin.
+    ASSERT_EQ(runStreak(dir, base + "--point-cache " + dir.file("man.pc2") + " -o " + dir.file("object.exr")).exitCode, 0);
+    EXPECT_LT(psnr(readImage(dir.file("skin.exr")), readImage(dir.file("object.exr"))), 30.0);
+}
+
 // --frames A:B renders each frame to the output pattern, each equal to rendering that frame
 // alone; stats go one file per frame with a %d, else into one {"frames": [...]}.
 TEST(Cli, SequenceWritesEachFrameAsItsSingleFrameRender) {
@@ -383,6 +430,10 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
     required.json()["extensionsRequired"] = {"EXT_meshopt_compression"};
     writeFile(inputs.file("required.gltf"), required.gltfBytes());
     const std::string glb = triangle + " -m accumulation --width 16 --height 16 --samples 2 ";
+    const std::string fourPoints = inputs.file("four.pc2"), threePoints = inputs.file("three.pc2");
+    writePointCache(fourPoints, {std::vector<glm::vec3>(4, glm::vec3(0.0f)), std::vector<glm::vec3>(4, glm::vec3(1.0f))}, false);
+    writePointCache(threePoints, {{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, {{0, -1, 0}, {2, -1, 0}, {1, 1, 0}}}, false);
+    EXPECT_EQ(runStreak(inputs, "render " + glb + "--point-cache " + threePoints + " -o " + inputs.file("cached.png")).exitCode, 0);
     // Regions of a 16x16 frame for stitch: the left half, the right half, a right half that
     // overlaps the left, a whole frame and a PNG region.
     const std::string left = inputs.file("left.exr"), right = inputs.file("right.exr"), wide = inputs.file("wide.exr");
@@ -487,6 +538,13 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"post-filter radius past its tiles", "render builtin:crossing -m post-filter --option tile=8 --option max-radius=16 -o " + out},
         {"post-filter of no taps", "render builtin:crossing -m post-filter --option samples=0 -o " + out},
         {"compare missing file", "compare " + dir.file("a.png") + " " + dir.file("b.png")},
+        {"a point cache of another vertex count", "render " + glb + "--point-cache " + fourPoints + " -o " + out},
+        {"a missing point cache", "render " + glb + "--point-cache " + inputs.file("missing.pc2") + " -o " + out},
+        {"a point cache of another format", "render " + glb + "--point-cache " + triangle + " -o " + out},
+        {"a point cache mesh not in the scene", "render " + glb + "--point-cache " + threePoints + " --point-cache-mesh cone -o " + out},
+        {"a point cache space of neither", "render " + glb + "--point-cache " + threePoints + " --point-cache-space local -o " + out},
+        {"a point cache mesh without a cache", "render " + glb + "--point-cache-mesh tri -o " + out},
+        {"a point cache on a built-in scene", "render " + ok + "--point-cache " + threePoints + " -o " + out},
         {"a region past the image", "render " + ok + "--region 8,0,17,16 -o " + out},
         {"an empty region", "render " + ok + "--region 4,4,4,8 -o " + out},
         {"a region of three numbers", "render " + ok + "--region 0,0,8 -o " + out},
@@ -507,6 +565,33 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
         EXPECT_TRUE(dir.entries().empty()) << "left a file behind";
     }
+}
+
+// Good input whose render cannot be made exits 1, not 2, with one line and nothing written: an
+// output that cannot be written once its path was accepted (a file size limit of 1 KB stands in
+// for a full disk: the write fails with EFBIG), and a GL method with no OpenGL driver (glvnd
+// finds no EGL vendor). A farm manager retries those elsewhere and not bad input.
+TEST(Cli, ARenderThatCannotBeMadeExitsOneAndWritesNothing) {
+    test::TempDir dir;
+    const std::string render = std::string(STREAK_CLI_PATH) + " render builtin:cubes --width 64 --height 48 ";
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"a full disk", "trap '' XFSZ; ulimit -f 1; " + render + "-o " + dir.file("out.exr") + " --stats " + dir.file("s.json")},
+        {"no OpenGL driver", "__EGL_VENDOR_LIBRARY_FILENAMES=" + dir.file("none.json") + " " + render + "-m accumulation-gl -o " + dir.file("out.png")},
+    };
+    for (const auto& [what, command] : cases) {
+        SCOPED_TRACE(what);
+        const std::string err = dir.file("err.txt");
+        const int status = std::system(("(" + command + ") 2>" + err).c_str());
+        const std::string message = readFile(err);
+        std::filesystem::remove(err);
+        ASSERT_TRUE(WIFEXITED(status));
+        EXPECT_EQ(WEXITSTATUS(status), 1) << message;
+        EXPECT_EQ(countLines(message), 1) << message;
+        EXPECT_NE(message.find("streak: error: "), std::string::npos) << message;
+        EXPECT_TRUE(dir.entries().empty()) << "left a file behind";
+    }
+    // The same commands with room to write and a driver render (the cases fail for their reason).
+    EXPECT_EQ(std::system((render + "-o " + dir.file("out.exr") + " >/dev/null").c_str()), 0);
 }
 
 TEST(Cli, RendersGltfWithItsAnimationAndCameraFlags) {

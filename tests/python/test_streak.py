@@ -1,6 +1,7 @@
 """The Python module as a user calls it: a built-in scene against the CLI's EXR, a scene from
 numpy arrays against its closed form, and bad arrays raising one clear streak.Error."""
 import os
+import struct
 import subprocess
 import tempfile
 import unittest
@@ -68,6 +69,23 @@ class RenderTest(unittest.TestCase):
             self.assertEqual(stats["counters"]["motion_keys"], 5)
         with self.assertRaises(streak.Error):
             streak.Scene.load(CESIUM_MAN, motion_curve_order=3)  # an order without Bezier pieces applies to nothing
+
+    @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
+    def test_point_cache_reaches_the_loader(self):
+        # A PC2 of CesiumMan's vertex count moves the mesh; one of another count is refused.
+        scene = streak.Scene.load(CESIUM_MAN, width=64, height=48)
+        with tempfile.TemporaryDirectory() as tmp:
+            still = os.path.join(tmp, "still.pc2")
+            with open(still, "wb") as f:  # every point at the origin, at frames 0 and 1
+                f.write(b"POINTCACHE2\0" + struct.pack("<iiffi", 1, 3273, 0.0, 1.0, 2) + bytes(2 * 3273 * 12))
+            collapsed = streak.Scene.load(CESIUM_MAN, width=64, height=48, point_cache=still, point_cache_space="world")
+            # Every triangle collapsed to a point: skipped and counted as degenerate.
+            self.assertEqual(collapsed.skipped_triangles, scene.num_triangles)
+            wrong = os.path.join(tmp, "wrong.pc2")
+            with open(wrong, "wb") as f:
+                f.write(b"POINTCACHE2\0" + struct.pack("<iiffi", 1, 3, 0.0, 1.0, 1) + bytes(3 * 12))
+            with self.assertRaisesRegex(streak.Error, "3 points"):
+                streak.Scene.load(CESIUM_MAN, point_cache=wrong)
 
     def test_arrays_give_the_closed_form_coverage(self):
         keys, indices, camera = sweeping_quad()

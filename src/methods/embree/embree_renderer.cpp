@@ -44,7 +44,7 @@ struct DeviceErrors {
         if (errors->first.empty()) errors->first = message ? message : "unknown error";
     }
     void check(const char* what) const {
-        if (!first.empty()) throw Error(std::string("Embree: ") + what + ": " + first);
+        if (!first.empty()) throw RenderFailure(std::string("Embree: ") + what + ": " + first);
     }
 };
 

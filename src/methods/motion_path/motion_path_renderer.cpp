@@ -128,7 +128,7 @@ public:
         {
             PhaseTimer timer(context.stats, "tiles");
             const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
-            PartsProgress tiles(context.progress, std::size_t(grid.numTiles()));
+            PartsProgress tiles(context.progress, std::size_t(grid.numActiveTiles()));
             grid.forEachTile([&](int tile) {
                 renderTile(frame, grid, tile, shareFragments, scratch.local(), image);
                 tiles.partDone();

@@ -72,7 +72,7 @@ public:
         glNamedFramebufferParameteri(listFramebuffer.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, grid.samplesWide());
         glNamedFramebufferParameteri(listFramebuffer.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, grid.samplesHigh());
         if (glCheckNamedFramebufferStatus(listFramebuffer.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw Error("OpenGL: the stochastic-gl list framebuffer is incomplete");
+            throw RenderFailure("OpenGL: the stochastic-gl list framebuffer is incomplete");
         const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
         const float zero[4] = {0, 0, 0, 0};
         glClearTexImage(sum.id(), 0, GL_RGBA, GL_FLOAT, zero);
