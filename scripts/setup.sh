@@ -8,7 +8,7 @@ packages=(
   libglm-dev libtbb-dev libstb-dev libopenexr-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
-  libtinygltf-dev libembree-dev nlohmann-json3-dev
+  libtinygltf-dev libtinyobjloader-dev libembree-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
   python3-matplotlib python3-dev python3-pybind11 python3-numpy
   parallel

@@ -206,12 +206,14 @@ struct RenderArgs {
     std::optional<std::string> pointCache;
     std::optional<std::string> pointCacheMesh;
     std::optional<std::string> pointCacheSpace;
+    std::optional<std::string> velocityUnit;
+    bool sequenceInterpolate = false;
 };
 
 // The load options from the flags; Error for a glTF flag given with a built-in scene or a camera
 // flag without the ones it needs.
 sk::LoadOptions loadOptions(const RenderArgs& args) {
-    const bool isGltf = sk::isGltfFile(args.scene);
+    const bool isGltf = sk::isSceneFile(args.scene);
     const std::pair<const char*, bool> flags[] = {
         {"--frame", args.frame.has_value()}, {"--shutter", args.shutter.has_value()}, {"--fps", args.fps.has_value()},
         {"--animation", args.animation.has_value()}, {"--motion-keys", args.motionKeys.has_value()},
@@ -221,9 +223,10 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
         {"--camera-up", args.cameraUp.has_value()}, {"--camera-pos-end", args.cameraPosEnd.has_value()},
         {"--camera-target-end", args.cameraTargetEnd.has_value()}, {"--fov", args.fov.has_value()},
         {"--point-cache", args.pointCache.has_value()}, {"--point-cache-mesh", args.pointCacheMesh.has_value()},
-        {"--point-cache-space", args.pointCacheSpace.has_value()}};
+        {"--point-cache-space", args.pointCacheSpace.has_value()}, {"--velocity-unit", args.velocityUnit.has_value()},
+        {"--sequence-interpolate", args.sequenceInterpolate}};
     for (const auto& [flag, given] : flags)
-        if (given && !isGltf) throw Error(std::string(flag) + " applies to glTF scenes (.gltf, .glb) only");
+        if (given && !isGltf) throw Error(std::string(flag) + " applies to scene files (glTF, OBJ, PLY) only");
     sk::LoadOptions options;
     options.frame = args.frame.value_or(options.frame);
     options.shutterFrames = args.shutter.value_or(options.shutterFrames);
@@ -247,6 +250,8 @@ sk::LoadOptions loadOptions(const RenderArgs& args) {
     if (args.pointCacheSpace && *args.pointCacheSpace != "object" && *args.pointCacheSpace != "world")
         throw Error("--point-cache-space must be object or world, got '" + *args.pointCacheSpace + "'");
     options.pointCacheSpace = args.pointCacheSpace.value_or(options.pointCacheSpace);
+    options.velocityUnit = args.velocityUnit.value_or(options.velocityUnit);
+    options.sequenceInterpolate = args.sequenceInterpolate;
     options.width = args.width;
     options.height = args.height;
     options.camera = args.camera;
@@ -302,7 +307,7 @@ FrameList frameList(const RenderArgs& args) {
         list.frames.push_back(args.frame.value_or(0.0));
         return list;
     }
-    if (!sk::isGltfFile(args.scene)) throw Error("--frames A:B applies to glTF scenes (.gltf, .glb) only: a built-in scene has no clock");
+    if (!sk::isSceneFile(args.scene)) throw Error("--frames A:B applies to scene files (glTF, OBJ, PLY) only: a built-in scene has no clock");
     if (args.frame) throw Error("--frame and --frames A:B cannot both be given");
     long first = 0, last = 0, step = 1;
     char extra = 0;
@@ -318,30 +323,14 @@ FrameList frameList(const RenderArgs& args) {
 // `pattern` with its one %d (or %0Nd) replaced by the frame number; a pattern without one is
 // the path itself, allowed only for a single frame.
 std::string framePath(const std::string& pattern, double frame, bool isSequence, const std::string& flag) {
+    bool hasNumber = false;
     std::string out;
-    int conversions = 0;
-    for (std::size_t i = 0; i < pattern.size(); ++i) {
-        if (pattern[i] != '%') {
-            out += pattern[i];
-            continue;
-        }
-        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
-            out += '%', ++i;
-            continue;
-        }
-        std::size_t j = i + 1;
-        while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) ++j;
-        const std::string width = pattern.substr(i + 1, j - i - 1);
-        if (j >= pattern.size() || pattern[j] != 'd' || width.size() > 2 || (!width.empty() && width[0] != '0'))
-            throw Error(flag + " '" + pattern + "': the only conversion a frame pattern takes is %d or %0Nd (write %% for a %)");
-        char number[32];
-        std::snprintf(number, sizeof number, ("%" + width + "ld").c_str(), long(std::lround(frame)));
-        out += number;
-        ++conversions;
-        i = j;
+    try {
+        out = sk::framePatternPath(pattern, std::lround(frame), hasNumber);
+    } catch (const Error& e) {
+        throw Error(flag + " " + e.what());
     }
-    if (conversions > 1) throw Error(flag + " '" + pattern + "' has more than one %d");
-    if (conversions == 0 && isSequence) throw Error(flag + " '" + pattern + "' needs a %d (e.g. out_%04d.png) to name each frame of --frames");
+    if (!hasNumber && isSequence) throw Error(flag + " '" + pattern + "' needs a %d (e.g. out_%04d.png) to name each frame of --frames");
     return out;
 }
 
@@ -395,12 +384,12 @@ int runRender(const RenderArgs& args) {
     if (args.rollingShutter) load.shutter.rollingDuration = float(*args.rollingShutter);
     if (args.shutterPosition) load.shutterPosition = *args.shutterPosition;
     if (args.background) load.background = parseColor(*args.background);
-    if (args.shutterPosition && !sk::isGltfFile(args.scene)) throw Error("--shutter-position applies to glTF scenes (.gltf, .glb) only");
+    if (args.shutterPosition && !sk::isSceneFile(args.scene)) throw Error("--shutter-position applies to scene files (glTF, OBJ, PLY) only");
     load.trail = renderer.trail();
     if (load.trail) {
         if (args.shutterPosition || args.shutterCurve || args.rollingShutter)
             throw Error("the shutter flags do not apply to method " + args.method + ": it draws a trail, not a shutter average");
-        if (sk::isGltfFile(args.scene)) checkTrailFlags(args, "method " + args.method);
+        if (sk::isSceneFile(args.scene)) checkTrailFlags(args, "method " + args.method);
     }
     const FrameList list = frameList(args);
     std::vector<std::string> outputs, statsPaths;
@@ -539,7 +528,7 @@ int runShell(const RenderArgs& args) {
     const std::string extension = lowercaseExtension(args.output);
     if (extension != ".glb" && extension != ".gltf") throw Error("cannot write " + args.output + ": shell writes glTF (.glb or .gltf)");
     checkWritable(args.output, false);
-    if (sk::isGltfFile(args.scene)) checkTrailFlags(args, "shell");
+    if (sk::isSceneFile(args.scene)) checkTrailFlags(args, "shell");
     const sk::BlurShell shell = sk::blurShell(sk::Scene::load(args.scene, load), options);
     shell.scene.writeGltf(args.output);
     std::cout << "shell: " << shell.strips << " strips, " << shell.triangles << " triangles (" << shell.silhouetteEdges
@@ -584,6 +573,10 @@ void addGltfFlags(CLI::App* app, RenderArgs& args) {
                     "glTF: a PC2 or MDD point cache (Blender's Mesh Cache) moving one mesh: its triangle primitives' vertices, in order, "
                     "take the cache's points instead of its skin and morph targets (PC2 frames at --fps from its start frame; MDD times in seconds)");
     app->add_option("--point-cache-mesh", args.pointCacheMesh, "glTF: the node or mesh name the point cache moves (default: the scene's only mesh)");
+    app->add_flag("--sequence-interpolate", args.sequenceInterpolate,
+                  "OBJ/PLY sequences: interpolate the files even where their triangles differ (files of other vertex counts: an error, not held)");
+    app->add_option("--velocity-unit", args.velocityUnit,
+                    "velocities (glTF _VELOCITY, PLY vx vy vz) in metres per second or per frame: second or frame (second)");
     app->add_option("--point-cache-space", args.pointCacheSpace,
                     "glTF: object (the cache's points are in the node's space, which its transform places) or world (object)");
 }

@@ -114,6 +114,12 @@ struct LoadOptions {
     std::string pointCache;
     std::string pointCacheMesh;
     std::string pointCacheSpace = "object";
+    // --velocity-unit: velocity attributes (glTF _VELOCITY, PLY vx vy vz) move their vertices from
+    // where they are at the frame, in metres per "second" or per "frame".
+    std::string velocityUnit = "second";
+    // --sequence-interpolate: an OBJ/PLY sequence's files are interpolated even where their
+    // triangles differ, and files of differing vertex counts are an Error rather than held.
+    bool sequenceInterpolate = false;
     // Every scene: how the shutter is exposed (Scene::withShutter changes it later), and the
     // background colour (linear RGB) instead of the scene's own.
     Shutter shutter;
@@ -133,6 +139,14 @@ std::vector<SceneInfo> builtinScenes();
 
 // Whether a scene spec names a glTF file (.gltf, .glb) rather than a built-in scene.
 bool isGltfFile(const std::string& spec);
+// Whether a scene spec names a scene file with a clock, which takes the glTF load options: glTF,
+// or an OBJ or PLY mesh or numbered sequence (`fluid_%04d.ply`: frame N is file N).
+bool isSceneFile(const std::string& spec);
+
+// A frame pattern's path for one frame: its %d or %0Nd (`out_%04d.png`, `fluid_%04d.ply`)
+// replaced by the frame number, %% by a %. hasNumber says whether it has one; without, the
+// pattern is the one path. Throws Error for another conversion or more than one number.
+std::string framePatternPath(const std::string& pattern, long frame, bool& hasNumber);
 
 // Scene is a validated scene, shared cheaply between copies (immutable once made).
 class Scene {

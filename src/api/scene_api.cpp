@@ -5,6 +5,7 @@
 
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_writer.h"
+#include "scene/frame_pattern.h"
 #include "scene/scene_loader.h"
 #include "scene/shutter.h"
 #include "util/file_io.h"
@@ -110,6 +111,9 @@ GltfOptions gltfOptionsOf(const LoadOptions& o) {
     gltf.camera = o.camera;
     if (o.pointCacheSpace != "object" && o.pointCacheSpace != "world")
         throw Error("point cache space must be object or world, got '" + o.pointCacheSpace + "'");
+    if (o.velocityUnit != "second" && o.velocityUnit != "frame") throw Error("velocity unit must be second or frame, got '" + o.velocityUnit + "'");
+    gltf.isVelocityPerFrame = o.velocityUnit == "frame";
+    gltf.isSequenceInterpolated = o.sequenceInterpolate;
     if (!o.pointCache.empty()) gltf.pointCache = GltfPointCache{o.pointCache, o.pointCacheMesh, o.pointCacheSpace == "world"};
     else if (!o.pointCacheMesh.empty() || o.pointCacheSpace != "object") throw Error("point cache mesh and space need a point cache");
     if (o.lookAt) {
@@ -148,13 +152,15 @@ std::vector<SceneInfo> builtinScenes() {
 }
 
 bool isGltfFile(const std::string& spec) { return isGltfSpec(spec); }
+bool isSceneFile(const std::string& spec) { return isSceneFileSpec(spec); }
+std::string framePatternPath(const std::string& pattern, long frame, bool& hasNumber) { return streak::framePatternPath(pattern, frame, hasNumber); }
 
 Scene Scene::load(const std::string& spec, const LoadOptions& options) {
     if (options.width <= 0 || options.height <= 0) throw Error("load options: width and height must be positive");
     auto impl = std::make_shared<Impl>();
     impl->spec = spec;
-    impl->isGltf = isGltfSpec(spec);
-    if (!options.pointCache.empty() && !impl->isGltf) throw Error("a point cache applies to glTF scenes (.gltf, .glb) only");
+    impl->isGltf = isSceneFileSpec(spec);  // glTF, or a mesh or sequence loaded as one
+    if (!options.pointCache.empty() && !impl->isGltf) throw Error("a point cache applies to scene files (glTF, OBJ, PLY) only");
     GltfOptions gltf = gltfOptionsOf(options);
     const ShutterPosition position = parseShutterPosition(options.shutterPosition);
     impl->shutterPosition = shutterPositionName(position);
@@ -166,6 +172,7 @@ Scene Scene::load(const std::string& spec, const LoadOptions& options) {
     } else {
         if (options.trail) stats.setInfo("trail", "the built-in scene's shutter");
         gltf.frame = shutterOpenFrame(position, options.frame, options.shutterFrames);
+        gltf.velocityFrame = options.frame;  // velocities move vertices from where they are at the frame
     }
     {
         PhaseTimer timer(stats, "load");

@@ -142,21 +142,23 @@ PYBIND11_MODULE(streak, m) {
             "load",
             [](const std::string& spec, double frame, double shutter, double fps, const std::string& animation, const std::string& position,
                int width, int height, int motionKeys, const std::string& motionCurve, int motionCurveOrder, double keyTolerance,
-               const std::string& pointCache, const std::string& pointCacheMesh, const std::string& pointCacheSpace) {
+               const std::string& pointCache, const std::string& pointCacheMesh, const std::string& pointCacheSpace, const std::string& velocityUnit,
+               bool sequenceInterpolate) {
                 sk::LoadOptions o;
                 o.frame = frame, o.shutterFrames = shutter, o.fps = fps, o.animation = animation, o.shutterPosition = position;
                 o.width = width, o.height = height;
                 o.motionKeys = motionKeys, o.motionCurve = motionCurve, o.motionCurveOrder = motionCurveOrder, o.keyTolerancePixels = keyTolerance;
-                o.pointCache = pointCache, o.pointCacheMesh = pointCacheMesh, o.pointCacheSpace = pointCacheSpace;
+                o.pointCache = pointCache, o.pointCacheMesh = pointCacheMesh, o.pointCacheSpace = pointCacheSpace, o.velocityUnit = velocityUnit;
+                o.sequenceInterpolate = sequenceInterpolate;
                 return sk::Scene::load(spec, o);
             },
             py::arg("spec"), py::arg("frame") = 0.0, py::arg("shutter") = 0.5, py::arg("fps") = 24.0, py::arg("animation") = "",
             py::arg("shutter_position") = "start", py::arg("width") = 1024, py::arg("height") = 768, py::arg("motion_keys") = 0,
             py::arg("motion_curve") = "linear", py::arg("motion_curve_order") = 2, py::arg("key_tolerance") = 0.125,
-            py::arg("point_cache") = "", py::arg("point_cache_mesh") = "", py::arg("point_cache_space") = "object",
-            "builtin:NAME[?k=v&...] or a .gltf/.glb file; glTF time in frames and motion keys as on the command line "
+            py::arg("point_cache") = "", py::arg("point_cache_mesh") = "", py::arg("point_cache_space") = "object", py::arg("velocity_unit") = "second", py::arg("sequence_interpolate") = false,
+            "builtin:NAME[?k=v&...], a .gltf/.glb file, or an .obj/.ply mesh or numbered sequence (mesh_%04d.ply); glTF time in frames and motion keys as on the command line "
             "(motion_keys 0: chosen by key_tolerance; motion_curve bezier without motion_keys: Bezier pieces of motion_curve_order); "
-            "point_cache: a .pc2 or .mdd moving the mesh point_cache_mesh (or the only one), in object or world point_cache_space")
+            "point_cache: a .pc2 or .mdd moving the mesh point_cache_mesh (or the only one), in object or world point_cache_space; velocity_unit: second or frame, of _VELOCITY and PLY vx vy vz")
         .def_static("from_arrays", &fromArrays, py::arg("keys"), py::arg("indices"), py::arg("uvs") = py::none(),
                     py::arg("normals") = py::none(), py::arg("texture") = py::none(), py::arg("camera") = py::dict(),
                     py::arg("base_color") = py::none(), py::arg("double_sided") = true, py::arg("background") = py::none(),

@@ -48,6 +48,7 @@ struct PrimitiveData {
     std::vector<glm::vec4> colors;  ///< COLOR_0, or empty
     std::uint32_t material = 0;     ///< streak material
     std::uint32_t numJointsUsed = 0;  ///< 1 + the largest joint index with a nonzero weight; 0 if none
+    std::vector<glm::vec3> velocities;  ///< _VELOCITY, in the mesh's space; or empty
 };
 
 // One (node, primitive) of the scene: it becomes one streak Mesh.
@@ -537,6 +538,8 @@ private:
             }
             g.weights.insert(g.weights.end(), w.begin(), w.end());
         }
+        if (const int velocity = attribute("_VELOCITY"); velocity >= 0)
+            data.velocities = readVectors<glm::vec3, 3>(velocity, gltf::kFloat, n, what + " _VELOCITY");
         if (const int color = attribute("COLOR_0"); color >= 0) {
             const int numComponents = m_reader.numComponents(color, what + " COLOR_0");
             const std::uint32_t allowed = gltf::kFloat | gltf::kUnsignedByte | gltf::kUnsignedShort;
@@ -670,7 +673,7 @@ private:
                 continue;
             }
             const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
-            const bool isUnchanged = previous && out.nodes.worldFromNode[node] == previous->nodes.worldFromNode[node] &&
+            const bool isUnchanged = previous && instance.data->velocities.empty() && out.nodes.worldFromNode[node] == previous->nodes.worldFromNode[node] &&
                                      out.nodes.weights[node] == previous->nodes.weights[node] &&
                                      (!isSkinned || out.joints[instance.skin] == previous->joints.at(instance.skin));
             if (isUnchanged) {
@@ -684,8 +687,20 @@ private:
                 isSkinned ? std::span<const glm::mat4>(out.joints[instance.skin]) : std::span<const glm::mat4>();
             gltf::deformPrimitive(instance.data->geometry, out.nodes.weights[node], out.nodes.worldFromNode[node], jointMatrices,
                                   out.positions[i], out.normals[i]);
+            addVelocities(*instance.data, time, out.nodes.worldFromNode[node], out.positions[i]);
         }
         return out;
+    }
+
+    // _VELOCITY (fluids, remeshers: meshes whose topology changes between frames): each vertex
+    // moves along its velocity, turned and scaled by the node, from where it is at the
+    // velocity's frame (GltfOptions::velocityFrame), in metres per second or per frame.
+    void addVelocities(const PrimitiveData& data, float time, const glm::mat4& worldFromNode, std::vector<glm::vec3>& positions) const {
+        if (data.velocities.empty()) return;
+        const double seconds = double(time) - m_options.velocityFrame.value_or(m_options.frame) / m_options.fps;
+        const float scale = float(m_options.isVelocityPerFrame ? seconds * m_options.fps : seconds);
+        const glm::mat3 linear(worldFromNode);
+        for (std::size_t v = 0; v < positions.size(); ++v) positions[v] += linear * (scale * data.velocities[v]);
     }
 
     // How far the keys' path strays from the animation at the middle between each two keys, seen

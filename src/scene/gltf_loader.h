@@ -71,6 +71,13 @@ struct GltfOptions {
     float aspect = 4.0f / 3.0f;        ///< image width / height, to frame a scene without a camera
     bool allowExternalFiles = true;    ///< whether uris may name files (memory loads can say no)
     std::optional<GltfPointCache> pointCache;
+    // _VELOCITY vertex attributes move their vertices from where they are at velocityFrame
+    // (default: frame, where the shutter opens), in metres per second, or per frame.
+    std::optional<double> velocityFrame;
+    bool isVelocityPerFrame = false;
+    // A mesh sequence (scene/mesh_sequence.h) interpolates its files even where their triangles
+    // differ (vertices of one count in one order); files of other vertex counts are an Error.
+    bool isSequenceInterpolated = false;
     GltfLimits limits;
 };
 

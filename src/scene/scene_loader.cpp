@@ -1,6 +1,8 @@
 #include "scene/scene_loader.h"
 
 #include "scene/builtin_scenes.h"
+#include "scene/mesh_file.h"
+#include "scene/mesh_sequence.h"
 #include "util/error.h"
 
 #include <algorithm>
@@ -9,6 +11,8 @@
 #include <string_view>
 
 namespace streak {
+
+bool isSceneFileSpec(const std::string& spec) { return isGltfSpec(spec) || (!spec.starts_with("builtin:") && isMeshFilePath(spec)); }
 
 bool isGltfSpec(const std::string& spec) {
     std::string extension = std::filesystem::path(spec).extension().string();
@@ -26,10 +30,11 @@ Scene loadScene(const std::string& spec, const GltfOptions& gltf, RenderStats* s
                                                         : OptionMap::parseQuery(rest.substr(q + 1), "scene '" + spec + "'");
         return makeBuiltinScene(name, std::move(options));
     }
+    if (isMeshFilePath(spec)) return loadMeshSequence(spec, gltf, stats);  // a file or a numbered sequence
     std::error_code ec;
     if (!std::filesystem::is_regular_file(spec, ec))
         throw Error("cannot read scene '" + spec + "': no such file (built-in scenes are named builtin:NAME, see 'streak scenes')");
-    if (!isGltfSpec(spec)) throw Error("cannot load scene '" + spec + "': streak reads glTF 2.0 files (.gltf, .glb) and builtin:NAME scenes");
+    if (!isGltfSpec(spec)) throw Error("cannot load scene '" + spec + "': streak reads glTF 2.0 files (.gltf, .glb), OBJ and PLY meshes and sequences (.obj, .ply) and builtin:NAME scenes");
     return loadGltf(spec, gltf, stats);
 }
 

@@ -87,6 +87,25 @@ class RenderTest(unittest.TestCase):
             with self.assertRaisesRegex(streak.Error, "3 points"):
                 streak.Scene.load(CESIUM_MAN, point_cache=wrong)
 
+    def test_a_ply_sequence_loads_with_its_velocities(self):
+        # Two frames of a triangle whose vertex count changes: the first moves along its
+        # velocities, per frame or per second, as the CLI renders it.
+        with tempfile.TemporaryDirectory() as tmp:
+            for k, extra in ((0, ""), (1, "0 1 -5 1 0 0\n")):
+                with open(os.path.join(tmp, "tri_%04d.ply" % k), "w") as f:
+                    f.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+                            "property float vx\nproperty float vy\nproperty float vz\nelement face 1\n"
+                            "property list uchar int vertex_indices\nend_header\n" % (3 + len(extra.splitlines())))
+                    f.write("-1 -1 -5 1 0 0\n1 -1 -5 1 0 0\n0 1 -5 1 0 0\n" + extra + "3 0 1 2\n")
+            spec = os.path.join(tmp, "tri_%04d.ply")
+            cli = os.path.join(tmp, "cli.exr")
+            subprocess.run([CLI, "render", spec, "--width", "32", "--height", "24", "--shutter", "1", "--velocity-unit", "frame", "-o", cli], check=True)
+            scene = streak.Scene.load(spec, shutter=1, width=32, height=24, velocity_unit="frame")
+            image = streak.render(scene, width=32, height=24)
+            self.assertTrue(np.array_equal(image, streak.read_image(cli)))
+            slow = streak.render(streak.Scene.load(spec, shutter=1, width=32, height=24), width=32, height=24)
+            self.assertFalse(np.array_equal(image, slow))
+
     def test_arrays_give_the_closed_form_coverage(self):
         keys, indices, camera = sweeping_quad()
         scene = streak.Scene.from_arrays(keys=keys, indices=indices, camera=camera)

@@ -7,6 +7,7 @@
 
 #include "support/gltf_builder.h"
 #include "support/point_cache_files.h"
+#include "support/expect_error.h"
 #include "support/temp_dir.h"
 
 #include <glm/geometric.hpp>
@@ -24,15 +25,7 @@ using test::mddBytes;
 using test::pc2Bytes;
 using test::writeBytes;
 
-template <class Fn>
-void expectError(Fn&& fn, const std::string& needle) {
-    try {
-        fn();
-        ADD_FAILURE() << "no Error for " << needle;
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-}
+using test::expectErrorContaining;
 
 glm::vec3 pointAt(const PointCache& cache, double seconds, std::size_t i) {
     std::vector<glm::vec3> out(1);
@@ -75,27 +68,27 @@ TEST(PointCache, BadFilesAreOneErrorNamingTheProblem) {
     const std::vector<std::vector<glm::vec3>> samples{{{0, 0, 0}}, {{1, 0, 0}}};
     std::vector<char> bytes = pc2Bytes(samples, 0.0f, 1.0f);
     bytes[0] = 'X';
-    expectError([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "no POINTCACHE2 signature");
+    expectErrorContaining([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "no POINTCACHE2 signature");
     bytes = pc2Bytes(samples, 0.0f, 1.0f);
     bytes.pop_back();
-    expectError([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "too short for 2 samples of 1 points");
+    expectErrorContaining([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "too short for 2 samples of 1 points");
     bytes = pc2Bytes(samples, 0.0f, 1.0f);
     bytes.push_back(0);
-    expectError([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "do not make 2 samples of 1 points");
+    expectErrorContaining([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "do not make 2 samples of 1 points");
     bytes = pc2Bytes(samples, 0.0f, 1.0f);
     bytes[28] = bytes[29] = bytes[30] = char(0xff), bytes[31] = 0x7f;  // 2^31 - 1 samples in a 56-byte file
-    expectError([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "too short for 2147483647 samples");
-    expectError([&] { PointCache::parse(pc2Bytes(samples, 0.0f, 0.0f), false, 24.0, "a.pc2"); }, "sample rate positive");
+    expectErrorContaining([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "too short for 2147483647 samples");
+    expectErrorContaining([&] { PointCache::parse(pc2Bytes(samples, 0.0f, 0.0f), false, 24.0, "a.pc2"); }, "sample rate positive");
     bytes = pc2Bytes(samples, 0.0f, 1.0f);
     bytes[12] = 2;  // version
-    expectError([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "version 2");
-    expectError([&] { PointCache::parse(mddBytes(samples, {1.0f, 0.5f}), true, 24.0, "a.mdd"); }, "finite and increasing");
-    expectError([&] { PointCache::parse(std::vector<char>(6, 0), true, 24.0, "a.mdd"); }, "ends inside its header");
+    expectErrorContaining([&] { PointCache::parse(bytes, false, 24.0, "a.pc2"); }, "version 2");
+    expectErrorContaining([&] { PointCache::parse(mddBytes(samples, {1.0f, 0.5f}), true, 24.0, "a.mdd"); }, "finite and increasing");
+    expectErrorContaining([&] { PointCache::parse(std::vector<char>(6, 0), true, 24.0, "a.mdd"); }, "ends inside its header");
     test::TempDir dir;
-    expectError([&] { PointCache::read(dir.file("missing.pc2"), 24.0, 1u << 20); }, "cannot read");
-    expectError([&] { PointCache::read(dir.file("cache.abc"), 24.0, 1u << 20); }, "a .pc2 or .mdd file");
+    expectErrorContaining([&] { PointCache::read(dir.file("missing.pc2"), 24.0, 1u << 20); }, "cannot read");
+    expectErrorContaining([&] { PointCache::read(dir.file("cache.abc"), 24.0, 1u << 20); }, "a .pc2 or .mdd file");
     writeBytes(dir.file("big.pc2"), pc2Bytes(samples, 0.0f, 1.0f));
-    expectError([&] { PointCache::read(dir.file("big.pc2"), 24.0, 16); }, "is larger than 16 bytes");
+    expectErrorContaining([&] { PointCache::read(dir.file("big.pc2"), 24.0, 16); }, "is larger than 16 bytes");
 }
 
 // A triangle on node "tri" (translated by (0, 0, -5), no animation) and a still quad on node
@@ -149,11 +142,11 @@ TEST(PointCache, MovesTheNamedMeshInItsNodesSpaceOrInWorldSpace) {
     EXPECT_NEAR(worldTri.positions[0].x, -0.5f, 1e-6f);
 
     options.pointCache->mesh = "";
-    expectError([&] { loadGltf(path, options); }, "the scene has 2 meshes; name the one it moves with --point-cache-mesh");
+    expectErrorContaining([&] { loadGltf(path, options); }, "the scene has 2 meshes; name the one it moves with --point-cache-mesh");
     options.pointCache->mesh = "cone";
-    expectError([&] { loadGltf(path, options); }, "--point-cache-mesh 'cone': no node or mesh");
+    expectErrorContaining([&] { loadGltf(path, options); }, "--point-cache-mesh 'cone': no node or mesh");
     options.pointCache->mesh = "quad";
-    expectError([&] { loadGltf(path, options); }, "the cache has 3 points, the mesh it moves 4 vertices");
+    expectErrorContaining([&] { loadGltf(path, options); }, "the cache has 3 points, the mesh it moves 4 vertices");
 }
 
 // Under a mirroring node (scale -1 in x) the drawn triangles are flipped back to
