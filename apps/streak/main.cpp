@@ -576,7 +576,7 @@ void addGltfFlags(CLI::App* app, RenderArgs& args) {
     app->add_flag("--sequence-interpolate", args.sequenceInterpolate,
                   "OBJ/PLY sequences: interpolate the files even where their triangles differ (files of other vertex counts: an error, not held)");
     app->add_option("--velocity-unit", args.velocityUnit,
-                    "velocities (glTF _VELOCITY, PLY vx vy vz) in metres per second or per frame: second or frame (second)");
+                    "velocities (glTF _VELOCITY, PLY vx vy vz, an OBJ's NAME.vel sidecar) in metres per second or per frame: second or frame (second)");
     app->add_option("--point-cache-space", args.pointCacheSpace,
                     "glTF: object (the cache's points are in the node's space, which its transform places) or world (object)");
 }
@@ -587,7 +587,7 @@ int run(int argc, char** argv) {
 
     RenderArgs renderArgs;
     CLI::App* render = app.add_subcommand("render", "render a scene with motion blur over the shutter [0,1]");
-    render->add_option("scene", renderArgs.scene, "scene: builtin:NAME[?key=value&...] (see 'streak scenes') or a glTF 2.0 file (.gltf, .glb)")
+    render->add_option("scene", renderArgs.scene, "scene: builtin:NAME[?key=value&...] (see 'streak scenes'), a glTF 2.0 file (.gltf, .glb), or an OBJ/PLY mesh or numbered sequence (mesh_%04d.ply)")
         ->capture_default_str();
     render->add_option("-m,--method", renderArgs.method, "motion-blur method (see 'streak methods')")->capture_default_str();
     render->add_option("-o,--output", renderArgs.output, "output image: .png (sRGB 8-bit) or .exr (linear float)")->capture_default_str();
@@ -657,14 +657,14 @@ int run(int argc, char** argv) {
     CLI::App* exportCommand = app.add_subcommand(
         "export", "write a scene as glTF 2.0 binary (.glb): motion keys as morph targets over the animation's first second "
                   "(render it with --frame 0 --shutter 24 --fps 24)");
-    exportCommand->add_option("scene", exportScene, "scene: builtin:NAME[?key=value&...] or a glTF file (its default shutter)")->required();
+    exportCommand->add_option("scene", exportScene, "scene: builtin:NAME[?key=value&...], a glTF file or an OBJ/PLY mesh or sequence (its default shutter)")->required();
     exportCommand->add_option("output", exportPath, "output file (.glb)")->required();
 
     RenderArgs shellArgs;
     shellArgs.output = "shell.glb";
     CLI::App* shellCommand = app.add_subcommand(
         "shell", "write the blur shell (Jones 2004) at T = --frame / --fps and the mesh there as glTF 2.0, to view the trail from any angle");
-    shellCommand->add_option("scene", shellArgs.scene, "scene: builtin:NAME[?key=value&...] (its shutter is the trail) or a glTF file")->required();
+    shellCommand->add_option("scene", shellArgs.scene, "scene: builtin:NAME[?key=value&...] (its shutter is the trail), a glTF file or an OBJ/PLY mesh or sequence")->required();
     shellCommand->add_option("-o,--output", shellArgs.output, "output file (.glb or .gltf)")->capture_default_str();
     shellCommand->add_option("--option", shellArgs.options, "a blur-shell option KEY=VALUE: length, subdivisions, alpha, fade (repeatable)");
     shellCommand->add_option("--width", shellArgs.width, "image width, for the aspect of a framing camera")->capture_default_str();

@@ -139,6 +139,7 @@ void applyTrail(const Trail& trail, GltfOptions& gltf, double frame, RenderStats
     gltf.frame = frame - trail.lengthSeconds * gltf.fps;
     gltf.shutter = trail.lengthSeconds * gltf.fps;
     gltf.motionKeys = trail.keys;
+    gltf.velocityFrame = frame;  // velocities move vertices from where they are at T
     stats.setInfo("trail", numberList({end - trail.lengthSeconds, end}) + " s");
     stats.setCounter("trail_before_start_seconds", std::max(0.0, trail.lengthSeconds - end));
 }

@@ -31,16 +31,26 @@ std::string firstLine(const std::string& text) {
     return line.empty() ? "unreadable" : line;
 }
 
-// Appends the fan of a polygon's corners, checking each index.
-void addPolygon(const std::vector<std::int64_t>& corners, std::size_t numVertices, const std::string& path, std::vector<glm::uvec3>& triangles) {
+// A piece of a file quoted in a message: one line of printable characters, at most 40 of them.
+std::string excerpt(const std::string& text) {
+    std::string out;
+    for (const char c : text.substr(0, 40)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+    return "'" + out + (text.size() > 40 ? "...'" : "'");
+}
+
+// Appends the fan of a polygon's corners, checking each index and the triangle count.
+void addPolygon(const std::vector<std::int64_t>& corners, std::size_t numVertices, std::size_t maxTriangles, const std::string& path,
+                std::vector<glm::uvec3>& triangles) {
     for (const std::int64_t c : corners)
         if (c < 0 || std::uint64_t(c) >= numVertices)
             throw Error(path + ": a face names vertex " + std::to_string(c) + " of " + std::to_string(numVertices));
+    if (corners.size() > 2 && triangles.size() + (corners.size() - 2) > maxTriangles)
+        throw Error(path + ": the mesh has more than " + std::to_string(maxTriangles) + " triangles");
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
         triangles.emplace_back(std::uint32_t(corners[0]), std::uint32_t(corners[k]), std::uint32_t(corners[k + 1]));
 }
 
-MeshFile readObj(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+MeshFile readObj(const std::string& path, const std::vector<std::uint8_t>& bytes, std::size_t maxTriangles) {
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // faces are fanned here, in the file's vertex order
     config.vertex_color = false;
@@ -57,8 +67,11 @@ MeshFile readObj(const std::string& path, const std::vector<std::uint8_t>& bytes
         for (const unsigned int count : shape.mesh.num_face_vertices) {
             std::vector<std::int64_t> corners;
             for (unsigned int k = 0; k < count && next < shape.mesh.indices.size(); ++k) corners.push_back(shape.mesh.indices[next++].vertex_index);
-            addPolygon(corners, mesh.positions.size(), path, mesh.triangles);
+            addPolygon(corners, mesh.positions.size(), maxTriangles, path, mesh.triangles);
         }
+        // tinyobjloader counts a face's corners in a byte: a face of 256 or more would misalign
+        // the faces after it.
+        if (next != shape.mesh.indices.size()) throw Error(path + ": a face has 256 or more corners");
     }
     return mesh;
 }
@@ -66,7 +79,8 @@ MeshFile readObj(const std::string& path, const std::vector<std::uint8_t>& bytes
 // PLY: a header of elements and their properties, then the elements' data, ASCII or binary.
 class PlyReader {
 public:
-    PlyReader(const std::string& path, const std::vector<std::uint8_t>& bytes) : m_path(path), m_bytes(bytes) {}
+    PlyReader(const std::string& path, const std::vector<std::uint8_t>& bytes, std::size_t maxTriangles)
+        : m_path(path), m_bytes(bytes), m_maxTriangles(maxTriangles) {}
 
     MeshFile read() {
         readHeader();
@@ -84,11 +98,11 @@ public:
                 glm::vec3 position(0.0f), velocity(0.0f);
                 for (const Property& p : element.properties) {
                     if (p.isList) {
-                        const std::uint64_t n = std::uint64_t(number(p.countType));
-                        if (n > 1024) throw Error(m_path + ": a " + element.name + " list of " + std::to_string(n) + " items");
+                        const std::int64_t n = wholeNumber(number(p.countType), 0, 1024, "a " + element.name + " list's length");
                         std::vector<std::int64_t> items;
-                        for (std::uint64_t k = 0; k < n; ++k) items.push_back(std::int64_t(number(p.type)));
-                        if (isFace && (p.name == "vertex_indices" || p.name == "vertex_index")) addPolygon(items, mesh.positions.size(), m_path, mesh.triangles);
+                        for (std::int64_t k = 0; k < n; ++k) items.push_back(wholeNumber(number(p.type), -1, std::int64_t(1) << 40, "an index"));
+                        if (isFace && (p.name == "vertex_indices" || p.name == "vertex_index"))
+                            addPolygon(items, mesh.positions.size(), m_maxTriangles, m_path, mesh.triangles);
                         continue;
                     }
                     const double v = number(p.type);
@@ -136,6 +150,13 @@ private:
 
     std::size_t remaining() const { return m_bytes.size() - m_pos; }
 
+    // A number that must be whole and in [lo, hi] (a list's length, an index).
+    std::int64_t wholeNumber(double v, std::int64_t lo, std::int64_t hi, const std::string& what) const {
+        if (!(v >= double(lo) && v <= double(hi)) || v != std::floor(v))
+            throw Error(m_path + ": " + what + " is " + std::to_string(v) + ", not a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return std::int64_t(v);
+    }
+
     void readHeader() {
         auto line = [&] {
             const std::size_t end = std::find(m_bytes.begin() + std::ptrdiff_t(m_pos), m_bytes.end(), std::uint8_t('\n')) - m_bytes.begin();
@@ -155,13 +176,13 @@ private:
                 std::string format;
                 in >> format;
                 if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
-                    throw Error(m_path + ": unknown PLY format '" + format + "'");
+                    throw Error(m_path + ": unknown PLY format " + excerpt(format));
                 m_isAscii = format == "ascii";
                 m_isBigEndian = format == "binary_big_endian";
                 hasFormat = true;
             } else if (word == "element") {
                 Element e;
-                if (!(in >> e.name >> e.count)) throw Error(m_path + ": a bad PLY element line '" + text + "'");
+                if (!(in >> e.name >> e.count)) throw Error(m_path + ": a bad PLY element line " + excerpt(text));
                 m_elements.push_back(e);
             } else if (word == "property") {
                 if (m_elements.empty()) throw Error(m_path + ": a PLY property before any element");
@@ -170,13 +191,13 @@ private:
                 if (p.type == "list") {
                     p.isList = true;
                     in >> p.countType >> p.type;
-                    if (sizeOf(p.countType) == 0) throw Error(m_path + ": unknown PLY type '" + p.countType + "'");
+                    if (sizeOf(p.countType) == 0) throw Error(m_path + ": unknown PLY type " + excerpt(p.countType));
                 }
                 in >> p.name;
-                if (sizeOf(p.type) == 0 || p.name.empty()) throw Error(m_path + ": a bad PLY property line '" + text + "'");
+                if (sizeOf(p.type) == 0 || p.name.empty()) throw Error(m_path + ": a bad PLY property line " + excerpt(text));
                 m_elements.back().properties.push_back(p);
             } else if (word != "comment" && word != "obj_info" && !word.empty()) {
-                throw Error(m_path + ": an unknown PLY header line '" + text + "'");
+                throw Error(m_path + ": an unknown PLY header line " + excerpt(text));
             }
         }
         if (!hasFormat) throw Error(m_path + ": the PLY header has no format line");
@@ -199,7 +220,7 @@ private:
             const std::string token(m_bytes.begin() + std::ptrdiff_t(start), m_bytes.begin() + std::ptrdiff_t(m_pos));
             char* end = nullptr;
             const double v = std::strtod(token.c_str(), &end);
-            if (*end != '\0') throw Error(m_path + ": '" + token + "' is not a number");
+            if (*end != '\0') throw Error(m_path + ": " + excerpt(token) + " is not a number");
             return v;
         }
         const std::size_t size = sizeOf(type);
@@ -224,6 +245,7 @@ private:
 
     const std::string& m_path;
     const std::vector<std::uint8_t>& m_bytes;
+    std::size_t m_maxTriangles;
     std::size_t m_pos = 0;
     bool m_isAscii = true, m_isBigEndian = false, m_hasVelocities = false;
     std::vector<Element> m_elements;
@@ -246,12 +268,14 @@ std::vector<glm::vec3> readObjVelocities(const std::string& path, std::size_t nu
     std::istringstream in(std::string(bytes.begin(), bytes.end()));
     std::vector<glm::vec3> velocities;
     for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::size_t start = line.find_first_not_of(" \t\r");
+        if (start == std::string::npos || line[start] == '#') continue;  // blank, or a comment
+        if (line.back() == '\r') line.pop_back();
         std::istringstream fields(line);
         glm::vec3 v;
         std::string extra;
         if (!(fields >> v.x >> v.y >> v.z) || (fields >> extra) || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-            throw Error(sidecar + ": line '" + line + "' is not three numbers vx vy vz");
+            throw Error(sidecar + ": line " + excerpt(line) + " is not three numbers vx vy vz");
         velocities.push_back(v);
     }
     if (velocities.size() != numVertices)
@@ -259,10 +283,10 @@ std::vector<glm::vec3> readObjVelocities(const std::string& path, std::size_t nu
     return velocities;
 }
 
-MeshFile readMeshFile(const std::string& path, std::uint64_t maxBytes) {
+MeshFile readMeshFile(const std::string& path, std::uint64_t maxBytes, std::size_t maxTriangles) {
     const std::vector<std::uint8_t> bytes = gltf::readFileBytes(path, maxBytes);
     const bool isObj = lowercaseExtension(path) == ".obj";
-    MeshFile mesh = isObj ? readObj(path, bytes) : PlyReader(path, bytes).read();
+    MeshFile mesh = isObj ? readObj(path, bytes, maxTriangles) : PlyReader(path, bytes, maxTriangles).read();
     if (isObj) mesh.velocities = readObjVelocities(path, mesh.positions.size(), maxBytes);
     if (mesh.positions.empty() || mesh.triangles.empty()) throw Error(path + ": the mesh has no triangles");
     if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) throw Error(path + ": too many vertices");

@@ -2,6 +2,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,8 +22,9 @@ struct MeshFile {
     std::vector<glm::vec3> velocities;  ///< one per vertex, or empty
 };
 
-// Reads a .obj or .ply file of at most maxBytes. Throws Error naming the file and the problem.
-MeshFile readMeshFile(const std::string& path, std::uint64_t maxBytes);
+// Reads a .obj or .ply file of at most maxBytes and maxTriangles. Throws Error naming the file
+// and the problem.
+MeshFile readMeshFile(const std::string& path, std::uint64_t maxBytes, std::size_t maxTriangles = std::size_t(1) << 26);
 
 // Whether the path names a mesh file streak reads (.obj, .ply, in any case).
 bool isMeshFilePath(const std::string& path);

@@ -80,46 +80,69 @@ private:
 Scene loadMeshSequence(const std::string& spec, const GltfOptions& options, RenderStats* stats) {
     bool isSequence = false;
     framePatternPath(spec, 0, isSequence);
-    if (!std::isfinite(options.frame) || !(options.shutter >= 0.0) || !std::isfinite(options.shutter) || !(options.fps > 0.0))
+    if (!std::isfinite(options.frame) || !(options.shutter >= 0.0) || !std::isfinite(options.shutter) || !(options.fps > 0.0) || !std::isfinite(options.fps))
         throw Error("the shutter must be finite frames and --fps positive");
-    // The files the shutter spans: frame N is file N.
+    // The files the shutter spans: frame N is file N. Past the sequence's ends the mesh holds its
+    // end file, as an animation holds its end values; a file missing between two that exist is
+    // a missing frame.
     const double open = options.frame, close = options.frame + options.shutter;
-    const long first = isSequence ? long(std::floor(open + 1e-9)) : 0;
-    const long last = isSequence ? std::max(first, long(std::ceil(close - 1e-9))) : 0;
+    const double reference = options.velocityFrame.value_or(open);  // the frame whose file a held mesh shows
+    if (!std::isfinite(reference) || std::abs(open) > 1e9 || std::abs(close) > 1e9 || std::abs(reference) > 1e9)
+        throw Error(spec + ": frames beyond a billion");
+    long first = isSequence ? long(std::floor(std::min(open, reference) + 1e-9)) : 0;
+    long last = isSequence ? std::max(first, long(std::ceil(std::max(close, reference) - 1e-9))) : 0;
     if (last - first > 4096) throw Error(spec + ": a shutter of more than 4096 frames");
-    std::vector<MeshFile> files;
-    for (long frame = first; frame <= last; ++frame) {
+    auto pathOf = [&](long frame) {
         bool unused = false;
-        const std::string path = framePatternPath(spec, frame, unused);
+        return framePatternPath(spec, frame, unused);
+    };
+    auto exists = [&](long frame) {
         std::error_code ec;
-        if (!std::filesystem::is_regular_file(path, ec))
-            throw Error(path + (isSequence ? ": frame " + std::to_string(frame) + " of the sequence is missing" : ": no such file"));
-        files.push_back(readMeshFile(path, options.limits.maxFileBytes));
+        return std::filesystem::is_regular_file(pathOf(frame), ec);
+    };
+    std::vector<long> present;
+    for (long frame = first; frame <= last; ++frame)
+        if (exists(frame)) present.push_back(frame);
+    if (present.empty())
+        throw Error(pathOf(first) + (isSequence ? ": the sequence has no file for frames " + std::to_string(first) + " to " + std::to_string(last) : ": no such file"));
+    for (std::size_t k = 1; k < present.size(); ++k)
+        if (present[k] != present[k - 1] + 1)
+            throw Error(pathOf(present[k - 1] + 1) + ": frame " + std::to_string(present[k - 1] + 1) + " of the sequence is missing");
+    // Outside the range, a sequence of files lying further on holds its nearer end.
+    first = present.front(), last = present.back();
+    std::vector<MeshFile> files;
+    std::size_t vertexWork = 0;
+    for (long frame = first; frame <= last; ++frame) {
+        files.push_back(readMeshFile(pathOf(frame), options.limits.maxFileBytes, options.limits.maxTriangles));
+        vertexWork += files.back().positions.size();
+        if (vertexWork > options.limits.maxVertexWork) throw Error(spec + ": the files' vertices exceed the limit of " + std::to_string(options.limits.maxVertexWork));
     }
-    const MeshFile& base = files.front();
     if (options.isSequenceInterpolated)
         for (std::size_t k = 1; k < files.size(); ++k)
-            if (files[k].positions.size() != base.positions.size())
+            if (files[k].positions.size() != files.front().positions.size())
                 throw Error(spec + ": frame " + std::to_string(first + long(k)) + " has " + std::to_string(files[k].positions.size()) + " vertices and frame " +
-                            std::to_string(first) + " " + std::to_string(base.positions.size()) +
+                            std::to_string(first) + " " + std::to_string(files.front().positions.size()) +
                             ": only files of one vertex count interpolate (without --sequence-interpolate, the mesh is held or moved by its velocities)");
     const bool isSameTopology = std::all_of(files.begin(), files.end(), [&](const MeshFile& f) {
-        return f.positions.size() == base.positions.size() && (options.isSequenceInterpolated || f.triangles == base.triangles);
+        return f.positions.size() == files.front().positions.size() && (options.isSequenceInterpolated || f.triangles == files.front().triangles);
     });
+    const bool isHeld = !isSameTopology;
+    // A held mesh is the file of the reference frame (--frame), moved by its velocities from there.
+    const long heldFrame = std::clamp(long(std::floor(reference + 1e-9)), first, last);
+    const MeshFile& base = isHeld ? files[std::size_t(heldFrame - first)] : files.front();
     const std::size_t n = base.positions.size();
 
     GlbBuilder b;
     nlohmann::json primitive;
     primitive["attributes"]["POSITION"] = b.addFloats(&base.positions[0].x, n, "VEC3", true);
     primitive["indices"] = b.addIndices(base.triangles);
-    const bool isHeld = !isSameTopology;
     GltfOptions o = options;
     o.allowExternalFiles = false;
     if ((isHeld || files.size() == 1) && !base.velocities.empty()) {
-        // The files cannot be interpolated (or there is one): the first moves along its
+        // The files cannot be interpolated (or there is one): the held one moves along its
         // velocities from its frame (a lone file's: the frame the user names).
         primitive["attributes"]["_VELOCITY"] = b.addFloats(&base.velocities[0].x, n, "VEC3");
-        if (isSequence) o.velocityFrame = double(first);
+        if (isSequence) o.velocityFrame = double(heldFrame);
     } else if (!isHeld && files.size() > 1) {
         // Each later file is a morph target; the weights animation is one-hot on file k's target
         // at its frame, so glTF's linear interpolation moves each vertex on the line between files.

@@ -12,10 +12,12 @@ namespace streak {
 // scene. A sequence is an animation: between two frames' files each vertex moves on the line
 // between its positions there, so the shutter [frame, frame + shutter] takes the files it spans,
 // floor(frame) to ceil(frame + shutter), and the keys are chosen over it as for a glTF animation
-// (the same options: key tolerance, Bezier pieces, cameras, point caches, trails). Where the
-// files' topology differs (fluids, remeshers), the mesh is the shutter's first file, moved along
-// its velocities where it has them (PLY vx vy vz; GltfOptions::isVelocityPerFrame), else held
-// still; --stats counts it (sequence_topology_changes, sequence_held_still). With
+// (the same options: key tolerance, Bezier pieces, cameras, point caches, trails). Past the
+// sequence's first or last file the mesh holds it, as an animation holds its end values; a file
+// missing between two that exist is an Error. Where the files' topology differs (fluids,
+// remeshers), the mesh is the file of GltfOptions::velocityFrame (--frame), moved along its
+// velocities from there where it has them (PLY vx vy vz, an OBJ's sidecar), else held still;
+// --stats counts it (sequence_topology_changes, sequence_held_still). With
 // isSequenceInterpolated the files are interpolated whenever their vertex counts agree (the
 // first file's triangles), and an Error where they do not. The mesh becomes
 // one glTF mesh whose files are morph targets, loaded by the glTF loader, so every glTF option

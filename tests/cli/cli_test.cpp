@@ -542,8 +542,9 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
     writePointCache(fourPoints, {std::vector<glm::vec3>(4, glm::vec3(0.0f)), std::vector<glm::vec3>(4, glm::vec3(1.0f))}, false);
     writePointCache(threePoints, {{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, {{0, -1, 0}, {2, -1, 0}, {1, 1, 0}}}, false);
     EXPECT_EQ(runStreak(inputs, "render " + glb + "--point-cache " + threePoints + " -o " + inputs.file("cached.png")).exitCode, 0);
-    // A sequence whose frame 1 is missing, and a PLY face naming a vertex it does not have.
+    // A sequence whose frame 1 is missing between 0 and 2, and a PLY face naming a vertex it does not have.
     std::ofstream(inputs.file("seq_0000.obj")) << "v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n";
+    std::ofstream(inputs.file("seq_0002.obj")) << "v 0 0 -5\nv 1 0 -5\nv 0 1 -5\nf 1 2 3\n";
     std::ofstream(inputs.file("bad.ply")) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 -5 1 0 -5 0 1 -5\n3 0 1 3\n";
     EXPECT_EQ(runStreak(inputs, "render " + inputs.file("seq_%04d.obj") + " --shutter 0 -o " + inputs.file("seq.png")).exitCode, 0);
@@ -662,7 +663,7 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"a point cache mesh without a cache", "render " + glb + "--point-cache-mesh tri -o " + out},
         {"a point cache on a built-in scene", "render " + ok + "--point-cache " + threePoints + " -o " + out},
         {"a sequence forced to interpolate files of two vertex counts", "render " + inputs.file("grow_%04d.obj") + " --shutter 1 --sequence-interpolate -o " + out},
-        {"a sequence with a missing frame", "render " + inputs.file("seq_%04d.obj") + " --shutter 1 -o " + out},
+        {"a sequence with a missing frame", "render " + inputs.file("seq_%04d.obj") + " --shutter 2 -o " + out},
         {"a PLY face past its vertices", "render " + inputs.file("bad.ply") + " -o " + out},
         {"a sequence pattern of two numbers", "render " + inputs.file("seq_%04d_%d.obj") + " -o " + out},
         {"an unknown velocity unit", "render " + inputs.file("seq_%04d.obj") + " --shutter 0 --velocity-unit hour -o " + out},

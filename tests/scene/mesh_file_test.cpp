@@ -15,6 +15,8 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -102,6 +104,20 @@ TEST(MeshFile, BadFilesAreOneErrorNamingTheProblem) {
     expectErrorContaining([&] { readMeshFile(dir.file("b2.ply"), 1u << 20); }, "too short for its 2000000000 vertex elements");
     writeText(dir.file("c.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n");
     expectErrorContaining([&] { readMeshFile(dir.file("c.ply"), 1u << 20); }, "no x, y and z");
+    writeText(dir.file("f.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                 "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n3 0 1 nan\n");
+    expectErrorContaining([&] { readMeshFile(dir.file("f.ply"), 1u << 20); }, "an index is nan, not a whole number");
+    writeText(dir.file("g.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                 "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n2.5 0 1 2\n");
+    expectErrorContaining([&] { readMeshFile(dir.file("g.ply"), 1u << 20); }, "list's length is 2.500000, not a whole number");
+    std::string corners = "f";
+    for (int k = 1; k <= 300; ++k) corners += " " + std::to_string(k);
+    std::string many;
+    for (int k = 0; k < 300; ++k) many += "v " + std::to_string(std::cos(k * 0.02)) + " " + std::to_string(std::sin(k * 0.02)) + " 0\n";
+    writeText(dir.file("h.obj"), many + corners + "\nf 1 2 3\n");
+    expectErrorContaining([&] { readMeshFile(dir.file("h.obj"), 1u << 20); }, "256 or more corners");
+    writeText(dir.file("i.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+    expectErrorContaining([&] { readMeshFile(dir.file("i.obj"), 1u << 20, 1); }, "more than 1 triangles");
     writeText(dir.file("d.ply"), "plx\n");
     expectErrorContaining([&] { readMeshFile(dir.file("d.ply"), 1u << 20); }, "not a PLY file");
     writeText(dir.file("e.obj"), "v 0 0 0\nv 1 0 0\n");
@@ -143,6 +159,10 @@ TEST(MeshSequence, InterpolatesItsFilesAndHoldsATopologyChange) {
     EXPECT_EQ(still.meshes[0].positions[6].x, 1.0f);
     EXPECT_EQ(held.counter("sequence_topology_changes"), 1.0);
     EXPECT_EQ(held.counter("sequence_held_still"), 1.0);
+    // The held file is the one at the velocities' frame (--frame: 2 under a centred shutter).
+    options.frame = 1.5, options.shutter = 1.0, options.velocityFrame = 2.0;
+    EXPECT_EQ(loadMeshSequence(dir.file("tri_%04d.obj"), options).meshes[0].positions[0].x, 2.0f);
+    options.frame = 1.0, options.shutter = 2.0, options.velocityFrame.reset();
 
     // With velocities (PLY vx vy vz, 0.5 m per frame here) the held file moves along them.
     for (int k = 1; k <= 3; ++k) writeText(dir.file("quad_000" + std::to_string(k) + ".ply"), plyQuad(k == 2 ? "binary_big_endian" : "ascii"));
@@ -168,8 +188,18 @@ TEST(MeshSequence, InterpolatesItsFilesAndHoldsATopologyChange) {
     expectErrorContaining([&] { loadMeshSequence(dir.file("tri_%04d.obj"), options); }, "frame 2 has 4 vertices and frame 1 3");
     options.isSequenceInterpolated = false;
 
+    // Past the last file the mesh holds it (as an animation holds its end values); a file
+    // missing between two that exist is refused.
+    writeText(dir.file("tri_0002.obj"), "v 2 0 -5\nv 2.5 0 -5\nv 2 1 -5\nf 1 2 3\n");
     options.frame = 3.0;
-    expectErrorContaining([&] { loadMeshSequence(dir.file("tri_%04d.obj"), options); }, "frame 5 of the sequence is missing");
+    const Scene end = loadMeshSequence(dir.file("tri_%04d.obj"), options);
+    EXPECT_NEAR(end.meshes[0].positions[3].x, 4.0f, 1e-5f);  // frame 4: file 4
+    EXPECT_NEAR(end.meshes[0].positions[6].x, 4.0f, 1e-5f);  // frame 5: still file 4
+    std::filesystem::remove(dir.file("tri_0002.obj"));
+    options.frame = 1.0;
+    expectErrorContaining([&] { loadMeshSequence(dir.file("tri_%04d.obj"), options); }, "frame 2 of the sequence is missing");
+    options.frame = 10.0;
+    expectErrorContaining([&] { loadMeshSequence(dir.file("tri_%04d.obj"), options); }, "no file for frames 10 to 12");
 }
 
 // A point cache moves an OBJ base mesh as it moves a glTF one: the OBJ's vertices in its order.
