@@ -54,6 +54,44 @@ TEST(PixelShading, SampleRateShadesEveryPieceAtItsSample) {
     EXPECT_EQ(counters.visibleTriangles, 1);
 }
 
+// With a cell per sample a textured piece has nothing to share: pixel shading is per-sample
+// shading, call for call (the sample's own site and span), whatever the filter. Untextured pieces
+// still share one shading over the pixel.
+TEST(PixelShading, ACellOfOneSampleShadesItAsPerSampleShadingDoes) {
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(2);
+    // The 2 x 2 samples in 2 x 2 cells, one cell each, see triangle 3 until different times.
+    auto shadeWith = [&](const PixelShadingOptions& options, auto isTextured, Recorder& recorder, std::vector<glm::vec3>& colors) {
+        PixelShading shading;
+        shading.begin(pattern, glm::dvec2(0.1), 2);
+        for (int s = 0; s < 4; ++s) {
+            const std::vector<VisiblePiece> pieces{{3, 0.0f, 0.5f + 0.1f * float(s), 0.5f + 0.1f * float(s), true}};
+            shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(pieces), isTextured);
+        }
+        colors.assign(4, glm::vec3(0.0f));
+        PixelShadingCounters counters;
+        shading.finish(options, recorder, colors, counters);
+    };
+    for (const bool box : {true, false}) {
+        Recorder perSample, perPixel;
+        std::vector<glm::vec3> sampleColors, pixelColors;
+        shadeWith(PixelShadingOptions{ShadingRate::Sample, 4, box}, kTextured, perSample, sampleColors);
+        shadeWith(PixelShadingOptions{ShadingRate::Pixel, 4, box}, kTextured, perPixel, pixelColors);
+        ASSERT_EQ(perPixel.calls.size(), 4u);
+        ASSERT_EQ(perPixel.calls.size(), perSample.calls.size());
+        for (std::size_t k = 0; k < 4; ++k) {
+            EXPECT_EQ(perPixel.calls[k].t1, perSample.calls[k].t1);
+            EXPECT_EQ(perPixel.calls[k].site.ndc, perSample.calls[k].site.ndc);
+            EXPECT_EQ(perPixel.calls[k].site.footprintPixels, perSample.calls[k].site.footprintPixels);
+            EXPECT_EQ(perPixel.calls[k].site.boxFootprint, perSample.calls[k].site.boxFootprint);
+        }
+        EXPECT_EQ(pixelColors, sampleColors);
+    }
+    Recorder shared;
+    std::vector<glm::vec3> colors;
+    shadeWith(PixelShadingOptions{ShadingRate::Pixel, 4, true}, kUntextured, shared, colors);
+    EXPECT_EQ(shared.calls.size(), 1u);
+}
+
 TEST(PixelShading, OverlappingPiecesShareOneShadingWeightedBySample) {
     // An edge sweeping over the pixel: the samples see the triangle from t = 0 to different
     // times, and one sample also sees a second triangle.
