@@ -29,7 +29,7 @@ Usage:
   bench/cycles_reference.py SCENE [--frame F --shutter S --fps R --animation A] [--camera I |
       --camera-pos=x,y,z --camera-target x,y,z ...] [--width 320 --height 240]
       [--spp 1024 | --spp 16,32,64,1024] [--out DIR] [--streak build/streak] [--blender blender]
-      [--threads N] [--seed N] [--motion-steps 6] [--srgb-filtering] [--verbose]
+      [--threads N] [--seed N] [--motion-steps 6] [--srgb-filtering] [--verbose] [--passes]
 Writes DIR/cycles-<spp>.exr (linear float) per spp, DIR/cycles.json (seconds per render, the
 camera, the shutter in Blender frames) and DIR/blender.log. Compare with streak rendered
 `--shading unlit --background 0,0,0` and the same scene flags: `streak compare`. The script also
@@ -271,10 +271,12 @@ def blender_environment():
 
 def render(scene, scene_args, spp_list, out_dir, streak=STREAK, blender="blender", width=320, height=240,
            frame=0.0, shutter=0.5, fps=24.0, animation=None, threads=0, seed=0, motion_steps=6, linear_textures=True,
-           quiet=True):
+           quiet=True, passes=False):
     """Renders `scene` with Cycles at every spp of `spp_list` (each with its own seed, so their
     noise is independent). Returns {spp: {"path": exr, "seconds": render time}} and writes it,
-    with the job, to out_dir/cycles.json."""
+    with the job, to out_dir/cycles.json. With passes, each render is a multilayer EXR with a
+    transparent film (ViewLayer.Combined.A) and Cryptomatte object and material layers (6
+    levels), and is named cycles-passes-<spp>.exr."""
     os.makedirs(out_dir, exist_ok=True)
     if scene.startswith("builtin:"):
         if scene_args:
@@ -288,9 +290,10 @@ def render(scene, scene_args, spp_list, out_dir, streak=STREAK, blender="blender
         job = {
             "scene": scene, "gltf": path, "width": width, "height": height, "frame": frame, "shutter": shutter, "fps": fps,
             "animation": animation, "threads": threads or os.cpu_count(), "motion_steps": motion_steps,
-            "linear_textures": linear_textures,
+            "linear_textures": linear_textures, "passes": passes,
             "camera": {key[len("camera_"):]: numbers(value) for key, value in info.items() if key.startswith("camera_")},
-            "renders": [{"spp": spp, "seed": seed + i, "path": os.path.join(os.path.abspath(out_dir), f"cycles-{spp}.exr")}
+            "renders": [{"spp": spp, "seed": seed + i,
+                         "path": os.path.join(os.path.abspath(out_dir), f"cycles-{'passes-' if passes else ''}{spp}.exr")}
                         for i, spp in enumerate(spp_list)],
             "result": os.path.join(tmp, "result.json"),
         }
@@ -633,6 +636,14 @@ class CyclesScene:
         scene.world = world
         settings = scene.render.image_settings
         settings.file_format, settings.color_mode, settings.color_depth, settings.exr_codec = "OPEN_EXR", "RGB", "32", "ZIP"
+        if job.get("passes"):
+            # Alpha and Cryptomatte as a compositor takes them: Film > Transparent, object and
+            # material Cryptomatte at Blender's default 6 levels, one multilayer EXR.
+            scene.render.film_transparent = True
+            layer = scene.view_layers[0]
+            layer.use_pass_cryptomatte_object = layer.use_pass_cryptomatte_material = True
+            layer.pass_cryptomatte_depth = 6
+            settings.file_format, settings.color_mode = "OPEN_EXR_MULTILAYER", "RGBA"
         frame = int(math.floor(self.open_frame))
         # Cycles' ray times cover [a, b] of its nominal shutter: widen and shift it so they cover
         # exactly [open, open + shutter].
@@ -702,6 +713,8 @@ def main():
     parser.add_argument("--srgb-filtering", action="store_true",
                         help="keep 8-bit textures as Blender loads them (Cycles filters them in sRGB, before decoding)")
     parser.add_argument("--verbose", action="store_true", help="show Blender's output")
+    parser.add_argument("--passes", action="store_true",
+                        help="a transparent film and Cryptomatte object and material layers, in multilayer EXRs")
     for flag in TIME_FLAGS + CAMERA_FLAGS:
         parser.add_argument(flag)
     args = parser.parse_args()
@@ -712,7 +725,7 @@ def main():
     results = render(args.scene, streak_scene_args(args), spp, args.out, streak=args.streak, blender=args.blender,
                      width=args.width, height=args.height, frame=frame, shutter=shutter, fps=fps,
                      animation=args.animation, threads=args.threads, seed=args.seed, motion_steps=args.motion_steps,
-                     linear_textures=not args.srgb_filtering, quiet=not args.verbose)
+                     linear_textures=not args.srgb_filtering, quiet=not args.verbose, passes=args.passes)
     for n, r in sorted(results.items()):
         print(f"{n} spp: {r['seconds']:.2f} s  {r['path']}")
 

@@ -171,6 +171,9 @@ struct RenderArgs {
     int aa = 1;
     std::optional<std::string> region;  ///< --region x0,y0,x1,y1
     bool sampleGrid = false;
+    bool transparent = false;
+    std::string passes;  ///< comma-separated
+    int cryptomatteRanks = 6;
     std::string shading = "phong";
     std::optional<std::string> background;
     std::uint64_t seed = 0;
@@ -364,6 +367,15 @@ int runRender(const RenderArgs& args) {
     settings.height = args.height;
     settings.aa = args.aa;
     settings.sampleGrid = args.sampleGrid;
+    settings.transparent = args.transparent;
+    for (std::size_t begin = 0; begin < args.passes.size();) {
+        const std::size_t comma = std::min(args.passes.find(',', begin), args.passes.size());
+        settings.passes.push_back(args.passes.substr(begin, comma - begin));
+        begin = comma + 1;
+    }
+    settings.cryptomatteRanks = args.cryptomatteRanks;
+    if (!settings.passes.empty() && lowercaseExtension(args.output) != ".exr")
+        throw Error("--passes are written to EXR: -o " + args.output + " is not an .exr");
     settings.unlit = args.shading == "unlit";
     settings.seed = args.seed;
     settings.threads = args.threads;
@@ -612,6 +624,13 @@ int run(int argc, char** argv) {
                        "render only the pixels [x0, x1) x [y0, y1) of the image, x0,y0,x1,y1 (Blender's border render): to .exr the "
                        "region keeps its place in the frame (data window), and 'streak stitch' joins regions into the whole frame, bit for bit");
     render->add_flag("--sample-grid", renderArgs.sampleGrid, "place the --aa samples on the regular N x N grid instead of n-rooks");
+    render->add_option("--passes", renderArgs.passes,
+                       "passes written beside the colour into the EXR, comma-separated: depth (Z, Z.min), object_id and material_id "
+                       "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact, embree sampled), "
+                       "albedo (albedo.R/G/B: every method, one more render, unlit)");
+    render->add_option("--cryptomatte-ranks", renderArgs.cryptomatteRanks, "Cryptomatte (ID, coverage) pairs kept per pixel")->capture_default_str();
+    render->add_flag("--transparent", renderArgs.transparent,
+                     "transparent background (Blender's Film > Transparent): RGBA, alpha the exact coverage; EXR premultiplied, PNG straight");
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();
     render->add_option("--background", renderArgs.background, "background colour r,g,b in linear [0,1] (default: the scene's)");
     render->add_option("--seed", renderArgs.seed, "seed of random sampling")->capture_default_str();

@@ -5,15 +5,34 @@
 #include "streak/error.h"
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace streak::api {
 
-// A linear-light RGB float image: width x height x 3 floats, row-major, top row first.
+// A linear-light RGB float image: width x height x 3 floats, row-major, top row first. With
+// alpha (a render with RenderSettings::transparent, an EXR with A, a PNG with alpha): one value
+// per pixel, each pixel's exact coverage, and rgb premultiplied by it (what shows over black).
 struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb;
+    std::vector<float> alpha;  ///< width x height, or empty: opaque
+    bool hasAlpha() const { return !alpha.empty(); }
+    // Passes (RenderSettings::passes; an EXR's other channels): width x height floats each, by
+    // channel name ("Z", "CryptoObject00.R", ...), and the string attributes that describe them
+    // (Cryptomatte's "cryptomatte/<key>/manifest", ...). Written to EXR only.
+    struct Channel {
+        std::string name;
+        std::vector<float> values;
+    };
+    std::vector<Channel> channels;
+    std::map<std::string, std::string> metadata;
+    const Channel* channel(const std::string& name) const {
+        for (const Channel& c : channels)
+            if (c.name == name) return &c;
+        return nullptr;
+    }
     // A region of a larger frame (RenderSettings::region; an EXR whose data window lies inside
     // its display window): the frame's size, and the pixel of it where the image's top-left
     // pixel lies. frameWidth 0: the image is a whole frame.
@@ -22,13 +41,20 @@ struct Image {
     float at(int x, int y, int channel) const { return rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(channel)]; }
 };
 
-// PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing.
+// PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing. With
+// alpha, RGBA: PNG's colour straight (divided by alpha), EXR's premultiplied.
 void writeImage(const Image& image, const std::string& path);
 Image readImage(const std::string& path);
 // Joins regions of one frame (each placed in it: isRegion; a whole frame is the region covering
 // it) into the whole frame, each pixel from the one region that holds it. Throws Error unless
-// every region lies in a frame of one size and together they cover each of its pixels once.
+// every region lies in a frame of one size and together they cover each of its pixels once,
+// and all have alpha or none does.
 Image stitch(const std::vector<Image>& regions);
+
+// A Cryptomatte matte (Cryptomatte 1.1): per pixel, the coverage of the object or material
+// `name` in the image's Cryptomatte type `type` ("CryptoObject", "CryptoMaterial"), summed
+// over the ranks whose ID is the name's. Throws Error when the image has no such layers.
+std::vector<float> cryptomatteMatte(const Image& image, const std::string& type, const std::string& name);
 
 // Throws Error unless the path ends in an image extension writeImage knows (.png, .exr), so a
 // caller can refuse a bad output before a long render.

@@ -52,6 +52,20 @@ struct RenderSettings {
     // memory the process holds.)
     std::optional<Region> region;
     int aa = 1;
+    // A transparent background (Blender's Film > Transparent): the image gets alpha, each pixel's
+    // exact coverage over its samples and the shutter (a translucent surface covers by its
+    // opacity), and its colour is what shows over a background of alpha 0, premultiplied.
+    bool transparent = false;
+    // Passes written beside the colour, as named channels of the image (EXR): "depth" (Z, the
+    // coverage-weighted mean view depth of what shows over the pixel's samples and the shutter,
+    // and Z.min, the nearest; 1e10 where nothing shows), "object_id" and "material_id"
+    // (Cryptomatte 1.1 layers CryptoObject00... and CryptoMaterial00...: cryptomatteRanks ranked
+    // (ID, coverage) pairs of the scene's object and material names, the coverages of a pixel
+    // summing to its alpha): written by motion-path, analytic and higher-order (exact) and embree
+    // (sampled), refused by the others. "albedo" (albedo.R/G/B: the unlit colour of what shows,
+    // premultiplied as the colour): every method, by one more render shaded unlit.
+    std::vector<std::string> passes;
+    int cryptomatteRanks = 6;
     bool sampleGrid = false;
     bool unlit = false;
     std::uint64_t seed = 0;

@@ -2,6 +2,7 @@
 
 #include "api/api_internal.h"
 
+#include "image/cryptomatte.h"
 #include "image/image_io.h"
 #include "image/metrics.h"
 
@@ -16,6 +17,9 @@ Image imageOf(const streak::Image& in) {
     out.width = in.width(), out.height = in.height();
     out.rgb.reserve(std::size_t(in.width()) * std::size_t(in.height()) * 3);
     for (const glm::vec3& p : in.pixels()) out.rgb.insert(out.rgb.end(), {p.x, p.y, p.z});
+    out.alpha.assign(in.alpha().begin(), in.alpha().end());
+    for (const ImageChannel& c : in.channels()) out.channels.push_back({c.name, c.values});
+    out.metadata = in.metadata();
     if (const std::optional<FramePlacement>& p = in.placement()) out.x = p->x, out.y = p->y, out.frameWidth = p->frameWidth, out.frameHeight = p->frameHeight;
     return out;
 }
@@ -25,6 +29,13 @@ streak::Image imageOf(const Image& in) {
         throw Error("image: rgb must be width x height x 3 floats");
     streak::Image out(in.width, in.height);
     for (std::size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] = {in.rgb[3 * i], in.rgb[3 * i + 1], in.rgb[3 * i + 2]};
+    if (in.hasAlpha() && in.alpha.size() != out.pixels().size()) throw Error("image: alpha must be width x height floats");
+    out.setAlpha(in.alpha);
+    for (const Image::Channel& c : in.channels) {
+        if (c.values.size() != out.pixels().size()) throw Error("image: channel " + c.name + " must be width x height floats");
+        out.addChannel(c.name, c.values);
+    }
+    for (const auto& [key, value] : in.metadata) out.setMetadata(key, value);
     if (in.isRegion()) out.place({in.x, in.y, in.frameWidth, in.frameHeight});
     return out;
 }
@@ -41,6 +52,14 @@ Image stitch(const std::vector<Image>& regions) {
     std::vector<streak::Image> in;
     std::uint64_t area = 0;
     for (const Image& r : regions) {
+        std::vector<std::string> names, firstNames;
+        for (const Image::Channel& c : r.channels) names.push_back(c.name);
+        for (const Image::Channel& c : regions.front().channels) firstNames.push_back(c.name);
+        if (names != firstNames)
+            throw Error("stitch: region " + std::to_string(&r - regions.data() + 1) + " (" + placed(r) + ") has other passes than region 1");
+        if (r.hasAlpha() != regions.front().hasAlpha())
+            throw Error("stitch: region " + std::to_string(&r - regions.data() + 1) + " (" + placed(r) + ") " + (r.hasAlpha() ? "has" : "has no") +
+                        " alpha and region 1 " + (r.hasAlpha() ? "has none" : "has"));
         if (frameWidth(r) != width || frameHeight(r) != height)
             throw Error("stitch: the regions belong to frames of different sizes (" + std::to_string(width) + "x" + std::to_string(height) + " and " +
                         std::to_string(frameWidth(r)) + "x" + std::to_string(frameHeight(r)) + ")");
@@ -49,6 +68,8 @@ Image stitch(const std::vector<Image>& regions) {
     }
     const std::uint64_t frameArea = std::uint64_t(width) * std::uint64_t(height);
     streak::Image frame(width, height);
+    if (regions.front().hasAlpha()) frame.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
+    std::vector<std::vector<float>> passes(regions.front().channels.size());
     std::vector<int> owner(area == frameArea ? frameArea : 0, -1);
     for (std::size_t k = 0; k < in.size() && area == frameArea; ++k) {
         const FramePlacement p = in[k].placement().value_or(FramePlacement{0, 0, width, height});
@@ -60,13 +81,37 @@ Image stitch(const std::vector<Image>& regions) {
                                 placed(regions[k]) + ") overlap at pixel " + std::to_string(p.x + x) + "," + std::to_string(p.y + y));
                 o = int(k);
                 frame.at(p.x + x, p.y + y) = in[k].at(x, y);
+                const std::size_t to = std::size_t(p.y + y) * std::size_t(width) + std::size_t(p.x + x);
+                if (frame.hasAlpha()) frame.alpha()[to] = in[k].alphaAt(x, y);
+                for (std::size_t c = 0; c < passes.size(); ++c) {
+                    if (passes[c].empty()) passes[c].assign(std::size_t(frameArea), 0.0f);
+                    passes[c][to] = in[k].channels()[c].values[std::size_t(y) * std::size_t(in[k].width()) + std::size_t(x)];
+                }
             }
     }
     // Regions that cover each pixel once have the frame's area; more overlap, fewer leave a gap.
     if (area != frameArea)
         throw Error("stitch: the regions' " + std::to_string(area) + " pixels " + (area > frameArea ? "overlap in" : "do not cover") + " the " +
                     std::to_string(width) + "x" + std::to_string(height) + " frame (" + std::to_string(frameArea) + " pixels)");
+    for (std::size_t c = 0; c < passes.size(); ++c) frame.addChannel(regions.front().channels[c].name, std::move(passes[c]));
+    for (const auto& [key, value] : regions.front().metadata) frame.setMetadata(key, value);
     return imageOf(frame);
+}
+
+std::vector<float> cryptomatteMatte(const Image& image, const std::string& type, const std::string& name) {
+    const float id = cryptomatteId(name);
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    std::vector<float> matte(pixels, 0.0f);
+    int ranks = 0;
+    for (;; ++ranks) {
+        const Image::Channel* ids = image.channel(cryptomatteChannel(type, ranks, false));
+        const Image::Channel* coverage = image.channel(cryptomatteChannel(type, ranks, true));
+        if (!ids || !coverage) break;
+        for (std::size_t i = 0; i < pixels; ++i)
+            if (ids->values[i] == id) matte[i] += coverage->values[i];
+    }
+    if (ranks == 0) throw Error("cryptomatte: the image has no " + type + " layers (" + cryptomatteChannel(type, 0, false) + ", ...)");
+    return matte;
 }
 
 void writeImage(const Image& image, const std::string& path) { streak::writeImage(imageOf(image), path); }

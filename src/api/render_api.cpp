@@ -51,6 +51,28 @@ Stats statsOf(const RenderStats& in) {
     return out;
 }
 
+// The albedo pass: the same visibility shaded unlit (a second render of the method, with the
+// same samples), over a transparent background: each pixel's coverage-weighted albedo,
+// premultiplied as the colour is. Timed as "albedo render".
+void addAlbedoPass(streak::Renderer& method, const streak::RenderSettings& settings, const std::string& methodName, const streak::Scene& scene,
+                   streak::Image& image, RenderStats& stats) {
+    streak::RenderSettings unlit = settings;
+    unlit.shading = ShadingMode::Unlit;
+    unlit.passes = PassRequest();
+    RenderStats albedoStats;
+    RenderContext context{albedoStats};
+    PhaseTimer timer(stats, "albedo render");
+    streak::Image albedo = method.render(scene, unlit, context);
+    if (!albedo.hasAlpha()) throw RenderFailure("method " + methodName + " gave no coverage for the albedo pass");
+    albedo = withTransparentBackground(std::move(albedo), scene.background);
+    static constexpr const char* kChannels[] = {"albedo.R", "albedo.G", "albedo.B"};
+    for (int c = 0; c < 3; ++c) {
+        std::vector<float> values(albedo.pixels().size());
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = albedo.pixels()[i][c];
+        image.addChannel(kChannels[c], std::move(values));
+    }
+}
+
 }  // namespace
 
 std::string numberList(std::initializer_list<double> values) {
@@ -82,6 +104,7 @@ struct Renderer::Impl {
     RenderSettings settings;
     streak::RenderSettings layerSettings;
     std::unique_ptr<streak::Renderer> method;
+    bool albedo = false;  ///< the albedo pass: a second render, unlit
 };
 
 Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Impl>()) {
@@ -107,6 +130,20 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     s.seed = settings.seed;
     s.memoryBudgetMB = std::uint64_t(settings.memoryBudgetMB);
     if (const std::optional<Region>& r = settings.region) s.region = raster::PixelBounds{r->x0, r->y0, r->x1 - 1, r->y1 - 1};
+    for (const std::string& pass : settings.passes) {
+        if (pass == "depth") s.passes.depth = true;
+        else if (pass == "object_id") s.passes.objectId = true;
+        else if (pass == "material_id") s.passes.materialId = true;
+        else if (pass == "albedo") m_impl->albedo = true;
+        else throw Error("render: unknown pass '" + pass + "' (depth, object_id, material_id, albedo)");
+    }
+    if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
+        throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
+    s.passes.cryptoRanks = settings.cryptomatteRanks;
+    if (s.passes.any() && !m_impl->method->writesPasses())
+        throw Error("method " + settings.method + " does not write the depth and Cryptomatte passes (" +
+                    std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : "material_id") +
+                    "): motion-path, analytic and higher-order write them exactly, embree sampled");
 }
 
 Renderer::~Renderer() = default;
@@ -133,6 +170,12 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
     stats.setCounter("height", settings.height);
     stats.setCounter("aa", settings.aa);
     stats.setCounter("sample_grid", settings.sampleGrid ? 1 : 0);
+    stats.setCounter("transparent", settings.transparent ? 1 : 0);
+    if (!settings.passes.empty()) {
+        std::string passes;
+        for (const std::string& p : settings.passes) passes += (passes.empty() ? "" : ",") + p;
+        stats.setInfo("passes", passes);
+    }
     stats.setCounter("triangles", double(in.scene.numTriangles()));
     stats.setCounter("skipped_triangles", double(in.cleanup.numSkipped()));
     stats.setCounter("skipped_nonfinite", double(in.cleanup.numNonFinite));
@@ -149,7 +192,11 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
     RenderResult result;
     {
         PhaseTimer timer(stats, "render");
-        const streak::Image image = m_impl->method->render(in.scene, m_impl->layerSettings, context);
+        streak::Image image = m_impl->method->render(in.scene, m_impl->layerSettings, context);
+        if (!settings.transparent) image.setAlpha({});
+        else if (!image.hasAlpha()) throw RenderFailure("method " + settings.method + " gave no coverage for a transparent background");
+        else image = withTransparentBackground(std::move(image), in.scene.background);
+        if (m_impl->albedo) addAlbedoPass(*m_impl->method, m_impl->layerSettings, settings.method, in.scene, image, stats);
         const std::optional<Region>& r = settings.region;
         result.image = imageOf(r ? image.region(r->x0, r->y0, r->x1, r->y1) : image);
     }

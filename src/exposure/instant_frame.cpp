@@ -76,17 +76,22 @@ std::int64_t drawInstantTile(const FlatGeometry& geometry, const InstantFrame& f
     }
 
     scratch.color.resize(numSamples);
+    scratch.coverage.resize(numSamples);
     scratch.opaqueInvW.resize(numSamples);
     for (std::size_t i = 0; i < numSamples; ++i) {
         const InstantScratch::VisibleSample& v = scratch.visible[i];
         scratch.opaqueInvW[i] = v.invW;
         scratch.color[i] = v.invW > 0.0f ? shade(frame.triangles[v.triangle], v.edges).color : scene.background;
+        scratch.coverage[i] = v.invW > 0.0f ? 1.0f : 0.0f;
     }
-    if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color);
+    if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color, scratch.coverage);
     // Submission order within the tile is the scene's triangle order, and each triangle's
     // fragments come in scan order: blending the list in turn is the thesis' draw order.
     for (const raster::TranslucentFragment& f : scratch.inOrder)
-        if (f.invW > scratch.opaqueInvW[f.sample]) scratch.color[f.sample] = f.alpha * f.color + (1.0f - f.alpha) * scratch.color[f.sample];
+        if (f.invW > scratch.opaqueInvW[f.sample]) {
+            scratch.color[f.sample] = f.alpha * f.color + (1.0f - f.alpha) * scratch.color[f.sample];
+            scratch.coverage[f.sample] = f.alpha + (1.0f - f.alpha) * scratch.coverage[f.sample];
+        }
     return fragments;
 }
 

@@ -49,11 +49,13 @@ struct InstantScratch {
     std::vector<VisibleSample> visible;
     std::vector<float> opaqueInvW;
     std::vector<glm::vec3> color;      ///< the tile's samples, pixel-major: the result
+    std::vector<float> coverage;       ///< and their coverage (alpha)
     std::vector<raster::TranslucentFragment> translucent;
     std::vector<raster::TranslucentFragment> inOrder;
 };
 
-// Rasterizes, shades and resolves one tile of `frame` (binned in `grid`) into scratch.color;
+// Rasterizes, shades and resolves one tile of `frame` (binned in `grid`) into scratch.color
+// and scratch.coverage;
 // returns the fragments scanned.
 std::int64_t drawInstantTile(const FlatGeometry& geometry, const InstantFrame& frame, const raster::TileGrid& grid, int tile,
                              const raster::SamplePattern& pattern, const InstantDraw& draw, InstantScratch& scratch);

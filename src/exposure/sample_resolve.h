@@ -37,7 +37,15 @@ struct SampleResolveCounters {
 void recordResolveStats(RenderStats& stats, const SampleResolveCounters& counters, double intervalSeconds, double numSamples,
                         double numPixels, int budget, const PixelShadingOptions& shading);
 
+// A resolved sample: the colour of what it has resolved, and its coverage (alpha).
+struct ResolvedSample {
+    glm::vec3 color{0.0f};
+    float coverage = 0.0f;
+};
+
 struct SampleResolveScratch {
+    float coverage = 0.0f;  ///< the last sample's: its exposure not left to the background
+    bool wasTranslucent = false;  ///< the last sample was resolved with translucency (weights, not visible spans)
     std::vector<float> weights;
     std::vector<VisiblePiece> pieces;
     std::vector<VisibleSpan> visible;  ///< where the opaque intervals show
@@ -49,7 +57,9 @@ struct SampleResolveScratch {
 // every colour when compressing, for the oracle), compress to `budget` (0: never), resolve
 // exactly over time (dropping first what is wholly hidden). Returns the colour of all but the
 // visible opaque pieces, which it leaves in scratch.pieces (each opaque interval's spans where
-// it shows, abutting ones of a triangle merged) for the pixel's shading (PixelShading). The method supplies, per interval source:
+// it shows, abutting ones of a triangle merged) for the pixel's shading (PixelShading), and its
+// coverage, the exposure not left to the background, in scratch.coverage. The method supplies,
+// per interval source:
 // triangleOf(source), isTranslucent(triangle) and shade(triangle, t0, t1) -> ShadedColor;
 // exactDepth, when given, measures the linear depths' misordering (resolveOpaque). Shares are
 // of the sample row's exposure, `window`.
@@ -81,6 +91,7 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     scratch.visible.clear();
     const bool hasTranslucency = std::any_of(list.begin(), list.end(), [](const ExposureInterval& x) { return x.alpha < 1.0f; });
     float backgroundWeight = 0.0f;
+    scratch.wasTranslucent = hasTranslucency;
     if (hasTranslucency) backgroundWeight = resolveTranslucent(list, scratch.weights, window);
     else
         backgroundWeight = resolveOpaque(list, scratch.weights, window, exactDepth, exactDepth ? &counters.misorderedTime : nullptr,
@@ -88,6 +99,7 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     const auto resolved = Clock::now();
     counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
 
+    scratch.coverage = 1.0f - backgroundWeight;
     glm::vec3 sum = background * backgroundWeight;
     scratch.pieces.clear();
     for (std::size_t k = 0; k < list.size(); ++k) {
@@ -108,6 +120,23 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
                 scratch.pieces.push_back({triangleOf(list[shown.interval].source), shown.t0, shown.t1, shown.weight, true});
     mergeAbuttingPieces(scratch.pieces);
     return sum;
+}
+
+// Calls show(source, share, depth) for what shows in the sample resolveSample last resolved from
+// `list`: each span where an opaque interval is the nearest, at its depth in the span's middle;
+// or, resolved with translucency, each interval with a share, at its mean depth. The shares sum
+// to the sample's coverage.
+template <class Show>
+void forEachShownSurface(const std::vector<ExposureInterval>& list, const SampleResolveScratch& scratch, Show&& show) {
+    if (scratch.wasTranslucent) {
+        for (std::size_t k = 0; k < list.size(); ++k)
+            if (scratch.weights[k] > 0.0f) show(list[k].source, scratch.weights[k], list[k].meanDepth());
+        return;
+    }
+    for (const VisibleSpan& shown : scratch.visible) {
+        const ExposureInterval& interval = list[shown.interval];
+        show(interval.source, shown.weight, interval.depthAt(0.5f * (shown.t0 + shown.t1)));
+    }
 }
 
 }  // namespace streak::exposure

@@ -2,9 +2,11 @@
 
 #include "exposure/exposure_interval.h"
 #include "exposure/pixel_shading.h"
+#include "exposure/sample_passes.h"
 #include "exposure/sample_resolve.h"
 #include "exposure/tile_budget.h"
 #include "exposure/visible_pieces.h"
+#include "image/image.h"
 #include "raster/sample_pattern.h"
 #include "raster/tile_grid.h"
 #include "scene/flat_geometry.h"
@@ -26,10 +28,11 @@ namespace streak::exposure {
 // The frame of the exact-time methods that work per tile: bins items by their pixel bounds
 // ("bin"), measures what the memory budget leaves the tiles (budget.measure()), then runs
 // renderTile(tile, scratch, image) on every tile in parallel with one Scratch per thread
-// ("tiles"); each tile owns its pixels. Returns the image, background where no tile wrote; the
-// per-thread scratches stay in `scratch` for the method to sum its counters.
+// ("tiles"); each tile owns its pixels, colour and coverage. Returns the image, background (and
+// coverage 0) where no tile wrote; the per-thread scratches stay in `scratch` for the method to
+// sum its counters.
 template <class Scratch, class RenderTile>
-std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raster::PixelBounds> bounds, const glm::vec3& background,
+Image runTilePass(raster::TileGrid& grid, std::span<const raster::PixelBounds> bounds, const glm::vec3& background,
                                    int width, int height, RenderStats& stats, ProgressReporter* progress, TileBudget& budget,
                                    tbb::enumerable_thread_specific<Scratch>& scratch, RenderTile&& renderTile) {
     {
@@ -37,7 +40,8 @@ std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raste
         grid.bin(bounds.size(), [&](std::size_t i) { return bounds[i]; });
     }
     budget.measure();
-    std::vector<glm::vec3> image(std::size_t(width) * std::size_t(height), background);
+    Image image(width, height, background);
+    image.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
     {
         PhaseTimer timer(stats, "tiles");
         PartsProgress tiles(progress, std::size_t(grid.numActiveTiles()));
@@ -52,46 +56,64 @@ std::vector<glm::vec3> runTilePass(raster::TileGrid& grid, std::span<const raste
     return image;
 }
 
+// Sets each pixel of rect in `image` (which has alpha) to the mean of its samples, laid out
+// pixel-major in rect: colour and coverage.
+inline void setTilePixels(const raster::PixelBounds& rect, int spp, std::span<const glm::vec3> color, std::span<const float> coverage, Image& image) {
+    for (int py = rect.y0; py <= rect.y1; ++py)
+        for (int px = rect.x0; px <= rect.x1; ++px) {
+            image.at(px, py) = glm::vec3(0.0f);
+            image.alpha()[std::size_t(py) * std::size_t(image.width()) + std::size_t(px)] = 0.0f;
+        }
+    raster::addTileToImage(rect, spp, color, 1.0f, image.pixels(), image.width());
+    raster::addTileToImage(rect, spp, coverage, 1.0f, image.alpha(), image.width());
+}
+
 // The second half of such a tile: every sample's intervals (records grouped by sample: runs[i]
 // to runs[i + 1] of bySample, each with an `interval`) become its colour, pixel by pixel:
 // resolve(ndc, pixel row, intervals) resolves a sample (exposure::resolveSample), returning the
-// colour of all but its visible opaque pieces, which it leaves in `pieces`; the pixel's pieces
+// colour of all but its visible opaque pieces, which it leaves in `pieces`, and its coverage
+// (ResolvedSample); the pixel's pieces
 // are then shaded together as `shading` says (textured triangles, isTextured(triangle), in cells) by shade(triangle, t0, t1, ShadingSite, pixel row)
-// (PixelShading), and the tile's pixels become the mean of their samples. A sample with no
-// intervals is the background.
+// (PixelShading), and the tile's pixels become the mean of their samples, colour and coverage.
+// A sample with no intervals is the background. With `passes`, each pixel's passes are written
+// from what resolve() adds to pixelPasses.
 template <class Record, class IsTextured, class Resolve, class Shade>
 void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, int width, int height, const glm::vec3& background,
                  std::span<const Record> bySample, std::span<const std::uint32_t> runs, std::vector<ExposureInterval>& list,
-                 const std::vector<VisiblePiece>& pieces, std::vector<glm::vec3>& color, std::vector<glm::vec3>& image, const PixelShadingOptions& shading,
-                 PixelShading& pixelShading, SampleResolveCounters& counters, IsTextured&& isTextured, Resolve&& resolve, Shade&& shade) {
+                 const std::vector<VisiblePiece>& pieces, std::vector<glm::vec3>& color, std::vector<float>& coverage, Image& image,
+                 const PixelShadingOptions& shading,
+                 PixelShading& pixelShading, SampleResolveCounters& counters, PassFrame* passes, PixelPasses& pixelPasses, IsTextured&& isTextured,
+                 Resolve&& resolve, Shade&& shade) {
     using Clock = std::chrono::steady_clock;
     const int tileWidth = rect.x1 - rect.x0 + 1, spp = pattern.count();
     const std::size_t numSamples = runs.size() - 1;
     color.resize(numSamples);
+    coverage.resize(numSamples);
     for (std::size_t first = 0; first < numSamples; first += std::size_t(spp)) {
         const int pixel = int(first / std::size_t(spp));
         const int px = rect.x0 + pixel % tileWidth, row = rect.y0 + pixel / tileWidth;
         pixelShading.begin(pattern, glm::dvec2(2.0 / width, 2.0 / height), shading.cellsFor(pattern.samplesPerAxis()));
+        if (passes) pixelPasses.begin();
         for (int s = 0; s < spp; ++s) {
             const std::size_t i = first + std::size_t(s);
             if (runs[i] == runs[i + 1]) {
-                color[i] = background;
+                color[i] = background, coverage[i] = 0.0f;
                 continue;
             }
             const glm::dvec2 ndc = pattern.ndcOf(px, row, s, width, height);
             list.clear();
             for (std::uint32_t k = runs[i]; k < runs[i + 1]; ++k) list.push_back(bySample[k].interval);
-            color[i] = resolve(ndc, row, list);
+            const ResolvedSample resolved = resolve(ndc, row, list);
+            color[i] = resolved.color, coverage[i] = resolved.coverage;
             pixelShading.add(s, ndc, std::span<const VisiblePiece>(pieces), isTextured);
         }
+        if (passes) pixelPasses.finish(*passes, px, row, 1.0f / float(spp));
         const auto start = Clock::now();
         pixelShading.finish(shading, [&](std::uint32_t triangle, float t0, float t1, const ShadingSite& site) { return shade(triangle, t0, t1, site, row); },
                             std::span<glm::vec3>(color).subspan(first, std::size_t(spp)), counters.shading);
         counters.shadeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
     }
-    for (int py = rect.y0; py <= rect.y1; ++py)
-        for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * std::size_t(width) + std::size_t(px)] = glm::vec3(0.0f);
-    raster::addTileToImage(rect, spp, color, 1.0f, image, width);
+    setTilePixels(rect, spp, color, coverage, image);
 }
 
 // One exposure interval of an exact method waiting in its tile for its sample's list.
@@ -123,7 +145,9 @@ struct ExactTileScratch {
     SampleResolveScratch resolve;
     PixelShading pixelShading;
     std::vector<glm::vec3> color;
+    std::vector<float> coverage;
     std::vector<glm::dvec2> sampleNdc;  ///< the tile's samples in NDC, indexed as TileRecord::sample
+    PixelPasses passes;
     Cache cache;
     Counters counters;
 };
@@ -188,28 +212,37 @@ using ExactDepthOfSource = std::function<double(std::uint32_t source, float t, c
 // sample, resolves every sample exactly (resolveSample, compressing to the budget) and shades
 // what shows (resolveTile: per sample, or per pixel as options.shading says). The method
 // supplies triangleOf(source) and shade(triangle, t0, t1, ShadingSite, pixel row) ->
-// ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`.
+// ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`,
+// and their passes, when asked for, to `passes`.
 template <class Cache, class Counters, class TriangleOf, class Shade>
 void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
                       const std::vector<FlatTriangle>& triangles, int width, int height, const ExactResolveOptions& options,
                       std::chrono::steady_clock::time_point intervalStart, ExactTileScratch<Cache, Counters>& scratch,
-                      std::vector<glm::vec3>& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr) {
+                      Image& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr,
+                      PassFrame* passes = nullptr) {
     const std::size_t numSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(rect.y1 - rect.y0 + 1) * std::size_t(pattern.count());
     raster::groupBySample(std::span<const TileRecord>(scratch.records), numSamples, scratch.runs, scratch.bySample);
     scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - intervalStart).count();
 
     auto materialOf = [&](std::uint32_t triangle) -> const Material& { return scene.materials[triangles[triangle].material]; };
     resolveTile(rect, pattern, width, height, scene.background, std::span<const TileRecord>(scratch.bySample),
-                std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, image,
-                options.shading, scratch.pixelShading, scratch.counters.resolve, [&](std::uint32_t triangle) { return materialOf(triangle).baseColorTexture >= 0; },
+                std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, scratch.coverage, image,
+                options.shading, scratch.pixelShading, scratch.counters.resolve, passes, scratch.passes,
+                [&](std::uint32_t triangle) { return materialOf(triangle).baseColorTexture >= 0; },
                 [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
         std::optional<ExactDepth> depth;
         if (exactDepth) depth = [&](std::size_t k, float t) { return (*exactDepth)(list[k].source, t, ndc); };
-        return resolveSample(
+        const glm::vec3 color = resolveSample(
             list, options.maxIntervals, options.oracle, depth ? &*depth : nullptr, options.occlusionCull, scene.shutter.rowWindow(row, height),
             scene.background, triangleOf, [&](std::uint32_t triangle) { return materialOf(triangle).isTranslucent(); },
             [&](std::uint32_t triangle, float t0, float t1) { return shade(triangle, t0, t1, sampleSite(ndc, pattern.samplesPerAxis()), row); },
             scratch.resolve, scratch.counters.resolve);
+        if (passes)
+            forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth) {
+                const FlatTriangle& t = triangles[triangleOf(source)];
+                scratch.passes.add(t.mesh, t.material, share, depth);
+            });
+        return ResolvedSample{color, scratch.resolve.coverage};
     }, shade);
 }
 

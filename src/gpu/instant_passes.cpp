@@ -85,13 +85,14 @@ void InstantPasses::draw(float t, std::size_t firstInOrderTriangle, glm::vec2 ro
     }
     m_translucency.resolve(m_target.color, m_sum, rowCell);
     if (numListed < numTriangles) {
-        // In submission order over the resolved colour: GL blends primitives in order.
+        // In submission order over the resolved colour: GL blends primitives in order. Coverage
+        // (the sum's alpha) becomes a + (1 - a) coverage.
         glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         glBindFramebuffer(GL_FRAMEBUFFER, m_sumTarget.id());
         glDepthMask(GL_FALSE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         glEnable(GL_BLEND);
-        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         glUseProgram(m_blend.id());
         buffers.bind(m_blend.id());
         setTime(m_blend, t);

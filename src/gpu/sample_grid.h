@@ -17,7 +17,7 @@ struct SampleGrid {
 };
 
 // Reads an RGBA32F sample texture back and box-filters each pixel's N x N samples, scaled by
-// `scale` (1/S for a sum over S passes).
+// `scale` (1/S for a sum over S passes): rgb the colour, alpha each sample's coverage.
 Image readSampleGrid(const GlTexture& samples, const SampleGrid& grid, float scale = 1.0f);
 
 }  // namespace streak::gpu

@@ -12,6 +12,7 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -19,6 +20,7 @@
 #include <cctype>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -88,17 +90,26 @@ void appendBytes(void* context, void* data, int size) {
     bytes->insert(bytes->end(), begin, begin + size);
 }
 
+// PNG's colour is straight, not premultiplied: an image with alpha is divided by it (colour 0
+// where nothing covers), and its alpha is stored linear, as the format says.
 std::vector<char> encodePng(const Image& image) {
+    const int channels = image.hasAlpha() ? 4 : 3;
     std::vector<std::uint8_t> codes;
-    codes.reserve(image.pixels().size() * 3);
-    for (const glm::vec3& p : image.pixels()) {
+    codes.reserve(image.pixels().size() * std::size_t(channels));
+    for (std::size_t i = 0; i < image.pixels().size(); ++i) {
+        glm::vec3 p = image.pixels()[i];
+        if (image.hasAlpha()) {
+            const float a = std::clamp(image.alpha()[i], 0.0f, 1.0f);
+            p = a > 0.0f ? p / a : glm::vec3(0.0f);
+        }
         codes.push_back(linearToSrgb8(p.x));
         codes.push_back(linearToSrgb8(p.y));
         codes.push_back(linearToSrgb8(p.z));
+        if (image.hasAlpha()) codes.push_back(std::uint8_t(std::lround(std::clamp(image.alpha()[i], 0.0f, 1.0f) * 255.0f)));
     }
     std::vector<char> bytes;
-    if (!stbi_write_png_to_func(appendBytes, &bytes, image.width(), image.height(), 3,
-                                codes.data(), image.width() * 3))
+    if (!stbi_write_png_to_func(appendBytes, &bytes, image.width(), image.height(), channels,
+                                codes.data(), image.width() * channels))
         throw std::runtime_error("PNG encoding failed");
     return bytes;
 }
@@ -112,6 +123,7 @@ std::vector<char> encodeExr(const Image& image, const std::string& path) {
     }
     const Imath::Box2i dataWindow = header.dataWindow();
     for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    if (image.hasAlpha()) header.channels().insert("A", Imf::Channel(Imf::FLOAT));
 
     // Slice wants a non-const base pointer even for writing; it only reads through it.
     auto* first = const_cast<glm::vec3*>(image.pixels().data());
@@ -121,6 +133,15 @@ std::vector<char> encodeExr(const Image& image, const std::string& path) {
     frameBuffer.insert("R", Imf::Slice::Make(Imf::FLOAT, &first->x, dataWindow, xStride, yStride));
     frameBuffer.insert("G", Imf::Slice::Make(Imf::FLOAT, &first->y, dataWindow, xStride, yStride));
     frameBuffer.insert("B", Imf::Slice::Make(Imf::FLOAT, &first->z, dataWindow, xStride, yStride));
+    if (image.hasAlpha())
+        frameBuffer.insert("A", Imf::Slice::Make(Imf::FLOAT, const_cast<float*>(image.alpha().data()), dataWindow, sizeof(float),
+                                                 sizeof(float) * std::size_t(image.width())));
+    for (const ImageChannel& c : image.channels()) {
+        header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+        frameBuffer.insert(c.name, Imf::Slice::Make(Imf::FLOAT, const_cast<float*>(c.values.data()), dataWindow, sizeof(float),
+                                                    sizeof(float) * std::size_t(image.width())));
+    }
+    for (const auto& [key, value] : image.metadata()) header.insert(key, Imf::StringAttribute(value));
 
     MemoryOStream stream(path);
     {
@@ -159,8 +180,11 @@ Image decodePng(const std::vector<char>& bytes) {
     const int length = int(bytes.size());
     int width = 0, height = 0, channels = 0;
     const bool sixteenBit = stbi_is_16_bit_from_memory(buffer, length);
-    void* data = sixteenBit ? static_cast<void*>(stbi_load_16_from_memory(buffer, length, &width, &height, &channels, 3))
-                            : static_cast<void*>(stbi_load_from_memory(buffer, length, &width, &height, &channels, 3));
+    // Grey and alpha (2) or RGBA (4): the alpha comes in too.
+    if (!stbi_info_from_memory(buffer, length, &width, &height, &channels)) channels = 3;
+    const int wanted = channels == 2 || channels == 4 ? 4 : 3;
+    void* data = sixteenBit ? static_cast<void*>(stbi_load_16_from_memory(buffer, length, &width, &height, &channels, wanted))
+                            : static_cast<void*>(stbi_load_from_memory(buffer, length, &width, &height, &channels, wanted));
     if (!data) {
         const char* reason = stbi_failure_reason();
         throw std::runtime_error(std::string("corrupt PNG (") + (reason ? reason : "unknown error") + ")");
@@ -169,15 +193,24 @@ Image decodePng(const std::vector<char>& bytes) {
 
     Image image(width, height);
     auto pixels = image.pixels();
+    std::vector<float> alpha(wanted == 4 ? pixels.size() : 0);
+    const std::size_t n = std::size_t(wanted);
     if (sixteenBit) {
         const auto* codes = static_cast<const std::uint16_t*>(data);
-        for (std::size_t i = 0; i < pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) pixels[i][c] = srgbToLinear(codes[3 * i + c] / 65535.0f);
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) pixels[i][c] = srgbToLinear(codes[n * i + std::size_t(c)] / 65535.0f);
+            if (!alpha.empty()) alpha[i] = codes[n * i + 3] / 65535.0f;
+        }
     } else {
         const auto* codes = static_cast<const std::uint8_t*>(data);
-        for (std::size_t i = 0; i < pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) pixels[i][c] = srgb8ToLinear(codes[3 * i + c]);
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) pixels[i][c] = srgb8ToLinear(codes[n * i + std::size_t(c)]);
+            if (!alpha.empty()) alpha[i] = codes[n * i + 3] / 255.0f;
+        }
     }
+    // Straight colour in the file; premultiplied in an Image.
+    for (std::size_t i = 0; i < alpha.size(); ++i) pixels[i] *= alpha[i];
+    image.setAlpha(std::move(alpha));
     return image;
 }
 
@@ -207,8 +240,27 @@ Image decodeExr(const std::vector<char>& bytes, const std::string& path) {
         frameBuffer.insert("G", Imf::Slice::Make(Imf::FLOAT, &first->y, dataWindow, xStride, yStride));
         frameBuffer.insert("B", Imf::Slice::Make(Imf::FLOAT, &first->z, dataWindow, xStride, yStride));
     }
+    // Every other float channel is a pass; string attributes named like Cryptomatte's come too.
+    std::vector<ImageChannel> passes;
+    for (Imf::ChannelList::ConstIterator c = channels.begin(); c != channels.end(); ++c) {
+        const std::string name = c.name();
+        if (name == "R" || name == "G" || name == "B" || name == "A" || (grey && name == "Y")) continue;
+        passes.push_back({name, std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f)});
+    }
+    for (ImageChannel& c : passes)
+        frameBuffer.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.values.data(), dataWindow, sizeof(float), sizeof(float) * std::size_t(width)));
+    std::vector<float> alpha;
+    if (channels.findChannel("A")) {
+        alpha.assign(std::size_t(width) * std::size_t(height), 0.0f);
+        frameBuffer.insert("A", Imf::Slice::Make(Imf::FLOAT, alpha.data(), dataWindow, sizeof(float), sizeof(float) * std::size_t(width)));
+    }
     file.setFrameBuffer(frameBuffer);
     file.readPixels(dataWindow.min.y, dataWindow.max.y);
+    image.setAlpha(std::move(alpha));
+    for (ImageChannel& c : passes) image.addChannel(std::move(c.name), std::move(c.values));
+    for (Imf::Header::ConstIterator a = file.header().begin(); a != file.header().end(); ++a)
+        if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()); text && std::string(a.name()).rfind("cryptomatte/", 0) == 0)
+            image.setMetadata(a.name(), text->value());
 
     if (grey)
         for (glm::vec3& p : image.pixels()) p = glm::vec3(p.x);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "image/image.h"
+#include "image/passes.h"
 #include "raster/screen_triangle.h"
 #include "scene/scene.h"
 #include "scene/shading.h"
@@ -35,6 +36,9 @@ struct RenderSettings {
     // unrendered, but every pixel inside must be what the whole frame's render gives it, to the
     // bit (a region render; the caller crops). None: the whole image.
     std::optional<raster::PixelBounds> region;
+    // Passes to write as channels of the image besides the colour (only a method whose
+    // writesPasses() is true is asked for them).
+    PassRequest passes;
 };
 
 // Where a render reports how it went.
@@ -61,6 +65,9 @@ public:
     // Renders `scene` (already validated) at settings.width x settings.height. Throws Error
     // for settings the method cannot honour.
     virtual Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) = 0;
+
+    // Whether the method writes the passes of RenderSettings::passes (depth, Cryptomatte).
+    virtual bool writesPasses() const { return false; }
 
     // The trail the method needs loaded instead of the shutter (blur-shell); none by default.
     virtual std::optional<AnimationTrail> animationTrail() const { return std::nullopt; }

@@ -38,17 +38,48 @@ std::array<float, 3> triple(const py::handle& object, const char* name) {
     return {a.at(0), a.at(1), a.at(2)};
 }
 
+// H x W x 3, or H x W x 4 with alpha (colour premultiplied by it).
 py::array_t<float> arrayOf(const sk::Image& image) {
-    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
-    std::copy(image.rgb.begin(), image.rgb.end(), out.mutable_data());
+    const py::ssize_t channels = image.hasAlpha() ? 4 : 3;
+    py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), channels});
+    float* data = out.mutable_data();
+    const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t c = 0; c < 3; ++c) data[i * std::size_t(channels) + c] = image.rgb[3 * i + c];
+        if (image.hasAlpha()) data[4 * i + 3] = image.alpha[i];
+    }
+    return out;
+}
+
+// The image and its passes: {'image': arrayOf, channel name: H x W, 'metadata': {key: text}}.
+py::dict layersOf(const sk::Image& image) {
+    py::dict out;
+    out["image"] = arrayOf(image);
+    for (const sk::Image::Channel& c : image.channels) {
+        py::array_t<float> values({py::ssize_t(image.height), py::ssize_t(image.width)});
+        std::copy(c.values.begin(), c.values.end(), values.mutable_data());
+        out[py::str(c.name)] = values;
+    }
+    py::dict metadata;
+    for (const auto& [key, value] : image.metadata) metadata[py::str(key)] = value;
+    out["metadata"] = metadata;
     return out;
 }
 
 sk::Image imageOf(const py::handle& object, const char* name) {
-    const FloatArray a = floats(object, name, 3, 3, "(H, W, 3)");
+    const FloatArray a = floats(object, name, 3, 0, "(H, W, 3) or (H, W, 4)");
+    if (a.shape(2) != 3 && a.shape(2) != 4) throw streak::Error(std::string(name) + " must be a float array of shape (H, W, 3) or (H, W, 4)");
     sk::Image image;
     image.height = int(a.shape(0)), image.width = int(a.shape(1));
-    image.rgb = flat(a);
+    if (a.shape(2) == 3) {
+        image.rgb = flat(a);
+        return image;
+    }
+    const std::size_t n = std::size_t(a.shape(0)) * std::size_t(a.shape(1));
+    for (std::size_t i = 0; i < n; ++i) {
+        image.rgb.insert(image.rgb.end(), a.data() + 4 * i, a.data() + 4 * i + 3);
+        image.alpha.push_back(a.data()[4 * i + 3]);
+    }
     return image;
 }
 
@@ -172,9 +203,12 @@ PYBIND11_MODULE(streak, m) {
     m.def(
         "render",
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
-           const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region) -> py::object {
+           const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region,
+           bool transparent, const std::vector<std::string>& passes, int cryptomatteRanks) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
+            s.transparent = transparent;
+            s.passes = passes, s.cryptomatteRanks = cryptomatteRanks;
             s.memoryBudgetMB = memoryBudgetMB;
             if (region) s.region = sk::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
             const sk::Scene sc = sceneOf(scene);
@@ -183,15 +217,20 @@ PYBIND11_MODULE(streak, m) {
                 py::gil_scoped_release release;
                 result = sk::render(sc, s);
             }
-            if (stats) return py::make_tuple(arrayOf(result.image), py::module_::import("json").attr("loads")(result.stats.json()));
-            return arrayOf(result.image);
+            py::object image = passes.empty() ? py::object(arrayOf(result.image)) : py::object(layersOf(result.image));
+            if (stats) return py::make_tuple(image, py::module_::import("json").attr("loads")(result.stats.json()));
+            return image;
         },
         py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
         py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
-        py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(),
+        py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(), py::arg("transparent") = false,
+        py::arg("passes") = std::vector<std::string>(), py::arg("cryptomatte_ranks") = 6,
         "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
         "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
-        "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image");
+        "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
+        "an H x W x 4 array whose alpha is each pixel's exact coverage and whose colour is premultiplied by it; "
+        "passes ['depth', 'object_id', 'material_id']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
+        "(Z, Z.min, CryptoObject00.R, ...; cryptomatte_ranks pairs)");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));
@@ -209,4 +248,14 @@ PYBIND11_MODULE(streak, m) {
     m.def("write_image", [](const py::handle& image, const std::string& path) { sk::writeImage(imageOf(image, "image"), path); },
           py::arg("image"), py::arg("path"), ".png (sRGB 8-bit) or .exr (linear float)");
     m.def("read_image", [](const std::string& path) { return arrayOf(sk::readImage(path)); }, py::arg("path"));
+    m.def("read_layers", [](const std::string& path) { return layersOf(sk::readImage(path)); }, py::arg("path"),
+          "an image file with its passes: {'image': H x W x 3|4, channel name: H x W, 'metadata': {...}}");
+    m.def("cryptomatte_matte", [](const std::string& path, const std::string& type, const std::string& name) {
+        const sk::Image image = sk::readImage(path);
+        const std::vector<float> matte = sk::cryptomatteMatte(image, type, name);
+        py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width)});
+        std::copy(matte.begin(), matte.end(), out.mutable_data());
+        return out;
+    }, py::arg("path"), py::arg("type"), py::arg("name"),
+    "the H x W matte of object or material `name` in an EXR's Cryptomatte type `type` ('CryptoObject', 'CryptoMaterial')");
 }

@@ -39,16 +39,4 @@ PixelBounds TileGrid::activeTileRange(const PixelBounds& p) const {
     return {std::max(t.x0, m_active.x0), std::max(t.y0, m_active.y0), std::min(t.x1, m_active.x1), std::min(t.y1, m_active.y1)};
 }
 
-void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> sampleColors, float weight,
-                    std::span<glm::vec3> image, int imageWidth) {
-    const float sampleWeight = weight / float(samplesPerPixel);
-    std::size_t i = 0;
-    for (int py = region.y0; py <= region.y1; ++py)
-        for (int px = region.x0; px <= region.x1; ++px) {
-            glm::vec3 pixel(0.0f);
-            for (int s = 0; s < samplesPerPixel; ++s) pixel += sampleColors[i++];
-            image[std::size_t(py) * imageWidth + px] += pixel * sampleWeight;
-        }
-}
-
 }  // namespace streak::raster

@@ -102,8 +102,6 @@ void scanTriangle(const ScreenTriangle& tri, const PixelBounds& region, const Sa
     }
 }
 
-// Adds weight times the box-filtered mean of each pixel's samples in `region` to its pixel in
-// `image` (row-major, imageWidth wide). Samples are laid out pixel-major within the region.
 // Counting sort of a tile's records by their sample (record.sample in [0, numSamples)): each
 // sample's records become one run, bySample[runs[i] .. runs[i + 1]), in their original order.
 template <class Record>
@@ -116,7 +114,28 @@ void groupBySample(std::span<const Record> records, std::size_t numSamples, std:
     for (const Record& r : records) bySample[cursor[r.sample]++] = r;
 }
 
-void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> sampleColors, float weight,
-                    std::span<glm::vec3> image, int imageWidth);
+// Adds weight times the box-filtered mean of each pixel's samples in `region` to its pixel in
+// `image` (row-major, imageWidth wide). Samples are laid out pixel-major within the region.
+// Value: a colour (glm::vec3) or a coverage (float).
+template <class Value>
+void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const Value> samples, float weight, std::span<Value> image,
+                    int imageWidth) {
+    const float sampleWeight = weight / float(samplesPerPixel);
+    std::size_t i = 0;
+    for (int py = region.y0; py <= region.y1; ++py)
+        for (int px = region.x0; px <= region.x1; ++px) {
+            Value pixel(0.0f);
+            for (int s = 0; s < samplesPerPixel; ++s) pixel += samples[i++];
+            image[std::size_t(py) * std::size_t(imageWidth) + std::size_t(px)] += pixel * sampleWeight;
+        }
+}
+inline void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const glm::vec3> samples, float weight,
+                           std::span<glm::vec3> image, int imageWidth) {
+    addTileToImage<glm::vec3>(region, samplesPerPixel, samples, weight, image, imageWidth);
+}
+inline void addTileToImage(const PixelBounds& region, int samplesPerPixel, std::span<const float> samples, float weight,
+                           std::span<float> image, int imageWidth) {
+    addTileToImage<float>(region, samplesPerPixel, samples, weight, image, imageWidth);
+}
 
 }  // namespace streak::raster

@@ -5,7 +5,7 @@
 namespace streak::raster {
 
 void compositeTranslucent(std::vector<TranslucentFragment>& fragments, std::span<const float> opaqueInvW,
-                          std::span<glm::vec3> color) {
+                          std::span<glm::vec3> color, std::span<float> coverage) {
     std::stable_sort(fragments.begin(), fragments.end(), [](const TranslucentFragment& a, const TranslucentFragment& b) {
         return a.sample != b.sample ? a.sample < b.sample : a.invW > b.invW;
     });
@@ -20,6 +20,7 @@ void compositeTranslucent(std::vector<TranslucentFragment>& fragments, std::span
             transmittance *= 1.0f - f.alpha;
         }
         color[sample] = sum + transmittance * color[sample];
+        coverage[sample] = 1.0f - transmittance * (1.0f - coverage[sample]);
     }
 }
 

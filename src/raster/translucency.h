@@ -19,8 +19,9 @@ struct TranslucentFragment {
 // Blends, per sample, the translucent fragments in front of its opaque surface over its colour,
 // front to back: C = sum_i T_i a_i c_i + T_n C_opaque with T_i = prod_{j<i} (1 - a_j).
 // Fragments behind (or at the depth of) the opaque surface are hidden. Sorts `fragments`.
-// Equal depths keep submission order (stable), so results do not depend on threads.
+// Equal depths keep submission order (stable), so results do not depend on threads. Each
+// sample's coverage (1: its opaque surface, 0: the background) becomes 1 - T_n (1 - coverage).
 void compositeTranslucent(std::vector<TranslucentFragment>& fragments, std::span<const float> opaqueInvW,
-                          std::span<glm::vec3> color);
+                          std::span<glm::vec3> color, std::span<float> coverage);
 
 }  // namespace streak::raster

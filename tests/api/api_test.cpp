@@ -177,6 +177,46 @@ TEST(Api, RegionsAreTheWholeFramesPixelsAndStitchBack) {
 
 // Display-space differences in closed form: one of two pixels off by a whole level in every
 // channel is MSE 1/2 (3.01 dB) over the image and MSE 1 (0 dB) over the foreground, that pixel.
+TEST(Api, TransparentPassesAndMattesThroughThePublicApi) {
+    // builtin:crossing (two triangles, no other object): with a transparent background each
+    // object's Cryptomatte matte is its coverage, and the two sum to the alpha.
+    const sk::Scene scene = sk::Scene::load("builtin:crossing");
+    sk::RenderSettings settings;
+    settings.method = "motion-path", settings.width = 48, settings.height = 36, settings.aa = 2, settings.transparent = true;
+    settings.passes = {"object_id", "depth"};
+    const sk::Image image = sk::render(scene, settings).image;
+    ASSERT_TRUE(image.hasAlpha());
+    ASSERT_NE(image.channel("Z"), nullptr);
+    std::vector<float> sum(image.alpha.size(), 0.0f);
+    for (const sk::Image::Channel& c : image.channels) ASSERT_EQ(c.values.size(), image.alpha.size()) << c.name;
+    for (const std::string name : {"front-to-back", "back-to-front"}) {  // the scene's two meshes
+        const std::vector<float> matte = sk::cryptomatteMatte(image, "CryptoObject", name);
+        EXPECT_GT(*std::max_element(matte.begin(), matte.end()), 0.99f) << name;
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += matte[i];
+    }
+    double worst = 0.0;
+    for (std::size_t i = 0; i < sum.size(); ++i) worst = std::max(worst, double(std::abs(sum[i] - image.alpha[i])));
+    EXPECT_LT(worst, 1e-5);
+    EXPECT_GT(*std::max_element(image.alpha.begin(), image.alpha.end()), 0.99f);
+    EXPECT_THROW(sk::cryptomatteMatte(image, "CryptoMaterial", "red"), streak::Error);  // material_id was not asked for
+    // The albedo pass is the unlit render of the same visibility over a transparent background,
+    // for any method: here, to the bit.
+    for (const char* method : {"motion-path", "stochastic"}) {
+        sk::RenderSettings lit = settings, unlit = settings;
+        lit.method = unlit.method = method, lit.passes = {"albedo"}, unlit.passes = {}, unlit.unlit = true;
+        const sk::Image withAlbedo = sk::render(scene, lit).image, albedo = sk::render(scene, unlit).image;
+        ASSERT_NE(withAlbedo.channel("albedo.G"), nullptr) << method;
+        for (std::size_t i = 0; i < albedo.alpha.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(withAlbedo.channel(std::string("albedo.") + "RGB"[c])->values[i], albedo.rgb[3 * i + std::size_t(c)]) << method;
+        EXPECT_NE(withAlbedo.rgb, albedo.rgb) << method;  // the beauty stays lit
+    }
+    settings.method = "accumulation";
+    EXPECT_THROW(sk::Renderer{settings}, streak::Error);  // writes no passes
+    settings.method = "motion-path", settings.passes = {"normals"};
+    EXPECT_THROW(sk::Renderer{settings}, streak::Error);
+}
+
 TEST(Api, ComparesInClosedFormAndDrawsTheHeatmap) {
     sk::Image black{2, 1, std::vector<float>(6, 0.0f)};
     sk::Image onePixel = black;

@@ -9,16 +9,19 @@
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
 
+#include <glm/common.hpp>
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <sstream>
+#include <stdexcept>
 
 namespace streak {
 
@@ -175,6 +178,89 @@ TEST(Cli, RegionsStitchIntoTheWholeFrameBitForBit) {
             for (int x = 0; x < part.width(); ++x) isSame = isSame && part.at(x, y) == whole.at(p.x + x, p.y + y);
         EXPECT_TRUE(isSame);
     }
+}
+
+// Renders `flags` once per region to dir/partK.exr and stitches them into dir/stitched.exr;
+// returns the parts' paths.
+std::vector<std::string> renderAndStitchRegions(const test::TempDir& dir, const std::string& flags, const std::vector<std::string>& regions) {
+    std::vector<std::string> parts;
+    std::string list;
+    for (const std::string& region : regions) {
+        parts.push_back(dir.file("part" + std::to_string(parts.size()) + ".exr"));
+        EXPECT_EQ(runStreak(dir, flags + "--region " + region + " -o " + parts.back()).exitCode, 0) << region;
+        list += " " + parts.back();
+    }
+    EXPECT_EQ(runStreak(dir, "stitch " + dir.file("stitched.exr") + list).exitCode, 0);
+    return parts;
+}
+
+// --transparent: RGBA whose alpha is the render's coverage and whose colour is the render over
+// the scene's background with the background's share (1 - alpha) taken out; EXR premultiplied,
+// PNG straight. Transparent regions stitch with their alpha; an opaque one does not join them.
+TEST(Cli, TransparentWritesCoverageAsAlphaAndRegionsStitchWithIt) {
+    test::TempDir dir;
+    const std::string base = "render builtin:cubes?n=40 -m motion-path --width 128 --height 96 --aa 2 ";
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("opaque.exr")).exitCode, 0);
+    ASSERT_EQ(runStreak(dir, base + "--transparent -o " + dir.file("t.exr")).exitCode, 0);
+    ASSERT_EQ(runStreak(dir, base + "--transparent -o " + dir.file("t.png")).exitCode, 0);
+    const Image opaque = readImage(dir.file("opaque.exr")), transparent = readImage(dir.file("t.exr")), png = readImage(dir.file("t.png"));
+    EXPECT_FALSE(opaque.hasAlpha());
+    ASSERT_TRUE(transparent.hasAlpha());
+    ASSERT_TRUE(png.hasAlpha());
+    const glm::vec3 background(0.02f, 0.025f, 0.04f);  // builtin:cubes'
+    int empty = 0, covered = 0, partial = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 128; ++x) {
+            const float a = transparent.alphaAt(x, y);
+            empty += a == 0.0f, covered += a == 1.0f, partial += a > 0.0f && a < 1.0f;
+            const glm::vec3 expected = glm::max(opaque.at(x, y) - background * (1.0f - a), glm::vec3(0.0f));
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(transparent.at(x, y)[c], expected[c], 1e-6f) << x << "," << y;
+            EXPECT_NEAR(png.alphaAt(x, y), a, 0.5f / 255.0f + 1e-6f);
+        }
+    EXPECT_GT(empty, 0);
+    EXPECT_GT(covered, 0);
+    EXPECT_GT(partial, 0);
+
+    const std::vector<std::string> parts = renderAndStitchRegions(dir, base + "--transparent ", {"0,0,64,96", "64,0,128,96"});
+    EXPECT_EQ(readFile(dir.file("stitched.exr")), readFile(dir.file("t.exr")));
+    ASSERT_EQ(runStreak(dir, base + "--region 0,0,64,96 -o " + dir.file("opaque_part.exr")).exitCode, 0);
+    const RunResult mixed = runStreak(dir, "stitch " + dir.file("mixed.exr") + " " + dir.file("opaque_part.exr") + " " + parts[1]);
+    EXPECT_EQ(mixed.exitCode, 2) << mixed.err;
+    EXPECT_NE(mixed.err.find("alpha"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("mixed.exr")));
+}
+
+// --passes writes depth and Cryptomatte layers beside the colour into the EXR, with the
+// Cryptomatte metadata; regions carry them and stitch back to the whole frame's bytes.
+TEST(Cli, PassesGoToTheExrAndStitchWithTheRegions) {
+    test::TempDir dir;
+    const std::string base = "render builtin:translucent -m analytic --width 96 --height 72 --aa 2 --transparent --passes depth,object_id,material_id ";
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("whole.exr")).exitCode, 0);
+    const Image whole = readImage(dir.file("whole.exr"));
+    std::vector<std::string> names;
+    for (const ImageChannel& c : whole.channels()) names.push_back(c.name);
+    for (const char* name : {"Z", "Z.min", "CryptoObject00.R", "CryptoObject02.A", "CryptoMaterial00.G", "CryptoMaterial02.B"})
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    EXPECT_EQ(names.size(), 2u + 2u * 12u);
+    int metadata = 0;
+    for (const auto& [key, value] : whole.metadata()) metadata += key.rfind("cryptomatte/", 0) == 0;
+    EXPECT_EQ(metadata, 8);  // name, hash, conversion and manifest of each type
+    // Each pixel's object coverages sum to its alpha: the translucent panes cover by their opacity.
+    auto values = [&](const Image& image, const std::string& name) -> const std::vector<float>& {
+        for (const ImageChannel& c : image.channels())
+            if (c.name == name) return c.values;
+        throw std::runtime_error("no channel " + name);
+    };
+    double worst = 0.0;
+    for (std::size_t i = 0; i < whole.alpha().size(); ++i) {
+        float sum = 0.0f;
+        for (const char* layer : {"CryptoObject00", "CryptoObject01", "CryptoObject02"})
+            sum += values(whole, std::string(layer) + ".G")[i] + values(whole, std::string(layer) + ".A")[i];
+        worst = std::max(worst, double(std::abs(sum - whole.alpha()[i])));
+    }
+    EXPECT_LT(worst, 1e-5);
+    renderAndStitchRegions(dir, base, {"0,0,40,72", "40,0,96,72"});
+    EXPECT_EQ(readFile(dir.file("stitched.exr")), readFile(dir.file("whole.exr")));
 }
 
 // --repeat renders again with the same renderer: the same image, and the stats of the last
@@ -595,6 +681,10 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"negative height", "render builtin:crossing --height -5 -o " + out},
         {"zero samples", "render builtin:crossing -m accumulation --samples 0 -o " + out},
         {"option a method does not take", "render builtin:crossing -m motion-path --samples 4 -o " + out},
+        {"passes to a PNG", "render builtin:crossing -m motion-path --width 16 --height 16 --passes depth -o " + out},
+        {"unknown pass", "render builtin:crossing -m motion-path --width 16 --height 16 --passes depth,normals -o " + dir.file("passes.exr")},
+        {"passes from a method without them", "render " + ok + "--passes object_id -o " + dir.file("passes.exr")},
+        {"no cryptomatte ranks", "render builtin:crossing -m analytic --width 16 --height 16 --passes object_id --cryptomatte-ranks 0 -o " + dir.file("passes.exr")},
         {"gpu memory on a CPU method", "render builtin:crossing -m motion-path --gpu-memory 64 -o " + out},
         {"zero repeat", "render " + ok + "--repeat 0 -o " + out},
         {"zero memory budget", "render " + ok + "--memory-budget 0 -o " + out},

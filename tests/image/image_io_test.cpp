@@ -13,6 +13,7 @@
 #include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 #include <half.h>
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -130,9 +131,82 @@ TEST(ImageIo, PngGreyAndAlphaInputs) {
     const std::uint8_t rgba[] = {10, 20, 30, 0, 200, 100, 50, 128};
     const std::string rgbaPath = dir.file("alpha.png");
     ASSERT_TRUE(stbi_write_png(rgbaPath.c_str(), 2, 1, 4, rgba, 8));
+    // Straight colour in the file, premultiplied in the image: what shows over black.
     const Image rgbaImage = readImage(rgbaPath);
-    EXPECT_EQ(rgbaImage.at(0, 0), glm::vec3(srgb8ToLinear(10), srgb8ToLinear(20), srgb8ToLinear(30)));
-    EXPECT_EQ(rgbaImage.at(1, 0), glm::vec3(srgb8ToLinear(200), srgb8ToLinear(100), srgb8ToLinear(50)));
+    ASSERT_TRUE(rgbaImage.hasAlpha());
+    EXPECT_EQ(rgbaImage.alphaAt(0, 0), 0.0f);
+    EXPECT_EQ(rgbaImage.alphaAt(1, 0), 128.0f / 255.0f);
+    EXPECT_EQ(rgbaImage.at(0, 0), glm::vec3(0.0f));
+    EXPECT_EQ(rgbaImage.at(1, 0), glm::vec3(srgb8ToLinear(200), srgb8ToLinear(100), srgb8ToLinear(50)) * (128.0f / 255.0f));
+}
+
+TEST(ImageIo, ExrKeepsPassChannelsAndCryptomatteMetadataAndRegionsCropThem) {
+    Image image(3, 2, glm::vec3(0.5f));
+    image.addChannel("Z", {1, 2, 3, 4, 5, 6});
+    image.addChannel("CryptoObject00.R", {0.25f, 0, 0, 0, 0, -7.5f});
+    image.setMetadata("cryptomatte/abcdef0/manifest", R"({"a":"3e800000"})");
+    TempDir dir;
+    writeImage(image, dir.file("passes.exr"));
+    const Image back = readImage(dir.file("passes.exr"));
+    ASSERT_EQ(back.channels().size(), 2u);
+    for (const ImageChannel& c : back.channels()) {
+        const ImageChannel& original = c.name == "Z" ? image.channels()[0] : image.channels()[1];
+        EXPECT_EQ(c.name, original.name);
+        EXPECT_EQ(c.values, original.values);
+    }
+    EXPECT_EQ(back.metadata().at("cryptomatte/abcdef0/manifest"), R"({"a":"3e800000"})");
+    const Image right = image.region(1, 0, 3, 2);
+    ASSERT_EQ(right.channels().size(), 2u);
+    EXPECT_EQ(right.channels()[0].values, (std::vector<float>{2, 3, 5, 6}));
+    EXPECT_EQ(right.metadata(), image.metadata());
+    // A pass may not take the colour's names, nor come twice.
+    EXPECT_THROW(image.addChannel("A", std::vector<float>(6)), Error);
+    EXPECT_THROW(image.addChannel("Z", std::vector<float>(6)), Error);
+    EXPECT_THROW(image.addChannel("Y2", std::vector<float>(5)), Error);
+}
+
+TEST(ImageIo, AlphaIsStraightInPngAndPremultipliedInExr) {
+    // A premultiplied image: half-covered mid grey, a full cover, and nothing.
+    Image image(3, 1);
+    image.at(0, 0) = glm::vec3(0.25f, 0.1f, 0.05f);
+    image.at(1, 0) = glm::vec3(0.8f, 0.6f, 0.4f);
+    image.setAlpha({0.5f, 1.0f, 0.0f});
+    TempDir dir;
+
+    // EXR: R G B A as they are, premultiplied, and back to the bit.
+    writeImage(image, dir.file("a.exr"));
+    {
+        Imf::InputFile file(dir.file("a.exr").c_str());
+        EXPECT_NE(file.header().channels().findChannel("A"), nullptr);
+    }
+    const Image exr = readImage(dir.file("a.exr"));
+    ASSERT_TRUE(exr.hasAlpha());
+    for (int x = 0; x < 3; ++x) {
+        EXPECT_EQ(exr.at(x, 0), image.at(x, 0));
+        EXPECT_EQ(exr.alphaAt(x, 0), image.alphaAt(x, 0));
+    }
+
+    // PNG: four channels, colour divided by alpha before sRGB encoding, alpha linear.
+    writeImage(image, dir.file("a.png"));
+    int width = 0, height = 0, channels = 0;
+    unsigned char* codes = stbi_load(dir.file("a.png").c_str(), &width, &height, &channels, 0);
+    ASSERT_NE(codes, nullptr);
+    EXPECT_EQ(channels, 4);
+    EXPECT_EQ(codes[0], linearToSrgb8(0.5f));
+    EXPECT_EQ(codes[1], linearToSrgb8(0.2f));
+    EXPECT_EQ(codes[3], 128);
+    EXPECT_EQ(codes[4], linearToSrgb8(0.8f));
+    EXPECT_EQ(codes[7], 255);
+    EXPECT_EQ(codes[8], 0);
+    EXPECT_EQ(codes[11], 0);
+    stbi_image_free(codes);
+
+    // An image without alpha stays three channels.
+    Image opaque(1, 1, glm::vec3(0.5f));
+    writeImage(opaque, dir.file("o.png"));
+    EXPECT_FALSE(readImage(dir.file("o.png")).hasAlpha());
+    writeImage(opaque, dir.file("o.exr"));
+    EXPECT_FALSE(readImage(dir.file("o.exr")).hasAlpha());
 }
 
 TEST(ImageIo, ExrRoundTripIsExact) {

@@ -52,6 +52,54 @@ class RenderTest(unittest.TestCase):
         with self.assertRaises(streak.Error):
             streak.render("builtin:spin", width=64, height=48, region=(0, 0, 65, 48))
 
+    def test_transparent_gives_the_sweeping_quads_coverage_as_alpha(self):
+        # Over a grey background, alpha is the closed-form coverage and the colour is the white
+        # quad's premultiplied by it: the background is gone. The CLI's EXR and write_image agree.
+        keys, indices, camera = sweeping_quad()
+        scene = streak.Scene.from_arrays(keys, indices, camera=camera, background=[0.5, 0.5, 0.5])
+        image = streak.render(scene, method="analytic", width=16, height=4, unlit=True, transparent=True)
+        self.assertEqual(image.shape, (4, 16, 4))
+        coverage = np.clip((14 - (np.arange(16) + 0.5)) / 12, 0, 1)
+        for row in image:
+            np.testing.assert_allclose(row[:, 3], coverage, atol=1e-5)
+            for c in range(3):
+                np.testing.assert_allclose(row[:, c], coverage, atol=1e-5)
+        opaque = streak.render(scene, method="analytic", width=16, height=4, unlit=True)
+        self.assertEqual(opaque.shape, (4, 16, 3))
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "t.exr")
+            subprocess.run([CLI, "render", "builtin:spin", "--width", "64", "--height", "48", "--transparent", "-o", path], check=True)
+            spin = streak.render("builtin:spin", width=64, height=48, transparent=True)
+            self.assertTrue(np.array_equal(spin, streak.read_image(path)))
+            streak.write_image(image, os.path.join(tmp, "q.exr"))
+            self.assertTrue(np.array_equal(image, streak.read_image(os.path.join(tmp, "q.exr"))))
+
+    def test_passes_come_back_as_a_dict_and_mattes_read_by_name(self):
+        # The sweeping quad's Cryptomatte coverage is its closed form; the EXR the CLI writes
+        # gives the same matte by the object's name through cryptomatte_matte.
+        keys, indices, camera = sweeping_quad()
+        scene = streak.Scene.from_arrays(keys, indices, camera=camera)
+        layers = streak.render(scene, method="analytic", width=16, height=4, unlit=True, passes=["depth", "object_id"])
+        coverage = np.clip((14 - (np.arange(16) + 0.5)) / 12, 0, 1)
+        self.assertEqual(layers["image"].shape, (4, 16, 3))
+        for row in layers["CryptoObject00.G"]:
+            np.testing.assert_allclose(row, coverage, atol=1e-5)
+        np.testing.assert_allclose(layers["Z"][:, :13], 3.0, rtol=1e-5)
+        self.assertTrue(np.all(layers["Z"][:, 14:] == 1e10))
+        self.assertTrue(any(k.endswith("/manifest") for k in layers["metadata"]))
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "passes.exr")
+            subprocess.run([CLI, "render", "builtin:crossing", "-m", "motion-path", "--width", "64", "--height", "48", "--passes", "object_id",
+                            "-o", path], check=True)
+            read = streak.read_layers(path)
+            names = [n for n in __import__("json").loads(read["metadata"][next(k for k in read["metadata"] if k.endswith("/manifest"))])]
+            self.assertGreaterEqual(len(names), 2)
+            total = sum(streak.cryptomatte_matte(path, "CryptoObject", n) for n in names)
+            rendered = streak.render("builtin:crossing", method="motion-path", width=64, height=48, transparent=True)
+            np.testing.assert_allclose(total, rendered[..., 3], atol=1e-5)
+            with self.assertRaises(streak.Error):
+                streak.cryptomatte_matte(path, "CryptoAsset", names[0])
+
     @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
     def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):
         # Scene.load takes the CLI's motion flags: chosen Bezier pieces render as the CLI's do.

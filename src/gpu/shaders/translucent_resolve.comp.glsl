@@ -1,5 +1,6 @@
 // Per sample, blends the translucent fragments in front of the opaque surface front to back
-// over it (raster/translucency.cpp) and adds the result to the running sum, weighted by the
+// over it (raster/translucency.cpp) and adds the result, with its coverage in alpha (1 over an
+// opaque surface, else what the layers take from the background), to the running sum, weighted by the
 // row's exposure of u_rowCell when it is a stretch of the shutter (else 1).
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -49,5 +50,6 @@ void main() {
         ShutterWindow w = rowWindow(s.y / u_flags.y);
         weight = exposureAt(w, u_rowCell.y) - exposureAt(w, u_rowCell.x);
     }
-    imageStore(u_sum, s, imageLoad(u_sum, s) + weight * vec4(sum + transmittance * color, 0.0));
+    float coverage = 1.0 - transmittance * (opaque.w > 0.0 ? 0.0 : 1.0);
+    imageStore(u_sum, s, imageLoad(u_sum, s) + weight * vec4(sum + transmittance * color, coverage));
 }

@@ -26,6 +26,7 @@ public:
         const float aspect = float(settings.width) / float(settings.height);
         raster::TileGrid grid(viewport, kTileSize, settings.region);
         std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
+        std::vector<float> coverage(sum.size(), 0.0f);
         tbb::enumerable_thread_specific<exposure::InstantScratch> scratch;
         exposure::InstantFrame slice;
         const exposure::InstantDraw draw{settings.shading};
@@ -51,14 +52,18 @@ public:
                 fragments += exposure::drawInstantTile(geometry, slice, grid, tile, pattern, draw, local);
                 if (schedule.isUniform()) {
                     raster::addTileToImage(rect, pattern.count(), local.color, 1.0f, sum, settings.width);
+                    raster::addTileToImage(rect, pattern.count(), local.coverage, 1.0f, coverage, settings.width);
                     return;
                 }
                 // A rolling shutter: each row weighs the instant by its own window.
                 const std::size_t rowSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(pattern.count());
-                for (int y = rect.y0; y <= rect.y1; ++y)
-                    raster::addTileToImage({rect.x0, y, rect.x1, y}, pattern.count(),
-                                           std::span<const glm::vec3>(local.color).subspan(std::size_t(y - rect.y0) * rowSamples, rowSamples),
+                for (int y = rect.y0; y <= rect.y1; ++y) {
+                    const std::size_t first = std::size_t(y - rect.y0) * rowSamples;
+                    raster::addTileToImage({rect.x0, y, rect.x1, y}, pattern.count(), std::span<const glm::vec3>(local.color).subspan(first, rowSamples),
                                            schedule.weight(s, y), sum, settings.width);
+                    raster::addTileToImage({rect.x0, y, rect.x1, y}, pattern.count(), std::span<const float>(local.coverage).subspan(first, rowSamples),
+                                           schedule.weight(s, y), coverage, settings.width);
+                }
             }, /*includeEmpty=*/true);
             numFragments += double(fragments.load());
             if (context.progress) context.progress->update(double(s + 1) / numInstants);
@@ -66,7 +71,8 @@ public:
 
         Image image(settings.width, settings.height);
         const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
-        for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm;
+        for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm, coverage[i] *= norm;
+        image.setAlpha(std::move(coverage));
         context.stats.setCounter("time_samples", m_samples);
         context.stats.setCounter("instants", numInstants);
         context.stats.setCounter("fragments", numFragments);

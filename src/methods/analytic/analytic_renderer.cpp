@@ -66,6 +66,7 @@ public:
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
         Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}};
+        if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "setup");
             frame.segmented.emplace(scene, viewport, m_options.curveSegments);
@@ -75,9 +76,9 @@ public:
         raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
-        const std::vector<glm::vec3> image = exposure::runTilePass(
+        Image image = exposure::runTilePass(
             grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, budget, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) {
+            context.progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
                 exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
                     return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
                 });
@@ -121,10 +122,11 @@ public:
             stats.setCounter("depth_misordered_fraction", r.coveredPairTime > 0.0 ? r.misorderedTime / r.coveredPairTime : 0.0);
         }
 
-        Image result(settings.width, settings.height);
-        std::copy(image.begin(), image.end(), result.pixels().begin());
-        return result;
+        if (frame.passes) frame.passes->writeTo(image);
+        return image;
     }
+
+    bool writesPasses() const override { return true; }
 
 private:
     struct Frame {
@@ -137,6 +139,7 @@ private:
         exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
         simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
+        mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
 
         void computeBounds() { bounds = segmented->screenBounds(viewport); }
 
@@ -177,7 +180,7 @@ private:
     // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
     // them instead).
     bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
-                    std::size_t maxRecords, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+                    std::size_t maxRecords, TileScratch& scratch, Image& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1;
         const int spp = frame.pattern.count();
@@ -317,7 +320,7 @@ private:
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             },
-            frame.options.checkDepthOrder ? &exactDepth : nullptr);
+            frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr);
         return true;
     }
 

@@ -33,16 +33,16 @@ public:
         grid.bin(frame.triangles.size(), [&](std::size_t i) { return frame.triangles[i].screen.bounds; });
         exposure::InstantDraw draw{settings.shading};
         if (!m_isSorted) draw.firstInOrderMesh = std::uint32_t(shellScene.firstShellMesh);
-        std::vector<glm::vec3> colors(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
+        Image image(settings.width, settings.height);
+        image.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
         tbb::enumerable_thread_specific<exposure::InstantScratch> scratch;
         std::atomic<std::int64_t> fragments{0};
         grid.forEachTile([&](int tile) {
             exposure::InstantScratch& local = scratch.local();
             fragments += exposure::drawInstantTile(geometry, frame, grid, tile, pattern, draw, local);
-            raster::addTileToImage(grid.tileBounds(tile), pattern.count(), local.color, 1.0f, colors, settings.width);
+            raster::addTileToImage(grid.tileBounds(tile), pattern.count(), local.color, 1.0f, image.pixels(), settings.width);
+            raster::addTileToImage(grid.tileBounds(tile), pattern.count(), local.coverage, 1.0f, image.alpha(), settings.width);
         }, /*includeEmpty=*/true);
-        Image image(settings.width, settings.height);
-        std::copy(colors.begin(), colors.end(), image.pixels().begin());
 
         context.stats.setCounter("fragments", double(fragments.load()));
         return image;

@@ -1,5 +1,6 @@
 #include "methods/embree/embree_renderer.h"
 
+#include "exposure/sample_passes.h"
 #include "raster/sample_pattern.h"
 #include "scene/flat_geometry.h"
 #include "util/error.h"
@@ -8,6 +9,7 @@
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vec4.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -112,6 +114,9 @@ public:
         const float aspect = float(width) / float(height), tanHalf = std::tan(scene.camera.verticalFov * 0.5f);
         const double spacing = double(pattern.footprintStep()) / double(raster::kSubpixelScale);
         Image image(width, height);
+        image.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
+        std::optional<exposure::PassFrame> passFrame;
+        if (settings.passes.any()) passFrame.emplace(scene, settings.passes, width, height);
         std::atomic<std::int64_t> rays{0}, overflowSamples{0};
         PhaseTimer timer(context.stats, "trace+shade");
         // A region render traces its pixels only: each pixel's rays are seeded by the pixel, not by
@@ -120,10 +125,13 @@ public:
         tbb::parallel_for(tbb::blocked_range<int>(pixels.y0, pixels.y1 + 1, 1), [&](const tbb::blocked_range<int>& rows) {
             std::vector<std::pair<unsigned, unsigned>> skipped;
             std::int64_t localRays = 0, localOverflow = 0;
+            exposure::PixelPasses pixelPasses;
+            exposure::PixelPasses* passes = passFrame ? &pixelPasses : nullptr;
             for (int py = rows.begin(); py != rows.end(); ++py) {
                 const ShutterWindow window = scene.shutter.rowWindow(py, height);  // times stratified in its exposure
                 for (int px = pixels.x0; px <= pixels.x1; ++px) {
-                    glm::vec3 sum(0.0f);
+                    glm::vec4 sum(0.0f);
+                    if (passes) passes->begin();
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(width) + std::uint64_t(px);
                     for (int a = 0; a < spp; ++a) {
                         const glm::dvec2 ndc = pattern.ndcOf(px, py, a, width, height);
@@ -138,11 +146,14 @@ public:
                             const Ray ray{pose.position, directionAt(ndc.x, ndc.y), directionAt(ndc.x + 2.0 * spacing / width, ndc.y),
                                           directionAt(ndc.x, ndc.y - 2.0 * spacing / height), t};
                             bool isOverflow = false;
-                            sum += trace(rtScene.get(), geometry, meshes, ray, settings.shading, skipped, localRays, isOverflow);
+                            sum += trace(rtScene.get(), geometry, meshes, ray, settings.shading, skipped, localRays, isOverflow, passes);
                             localOverflow += isOverflow ? 1 : 0;
                         }
                     }
-                    image.at(px, py) = sum / float(spp * m_options.samples);
+                    const glm::vec4 mean = sum / float(spp * m_options.samples);
+                    image.at(px, py) = glm::vec3(mean);
+                    image.alpha()[std::size_t(pixel)] = mean.w;
+                    if (passes) passes->finish(*passFrame, px, py, 1.0f / float(spp * m_options.samples));
                 }
             }
             rays += localRays;
@@ -153,8 +164,11 @@ public:
         stats.setCounter("time_samples_per_position", m_options.samples);
         stats.setCounter("rays", double(rays.load()));
         stats.setCounter("translucent_layer_overflow_samples", double(overflowSamples.load()));
+        if (passFrame) passFrame->writeTo(image);
         return image;
     }
+
+    bool writesPasses() const override { return true; }
 
 private:
     struct Ray {
@@ -223,10 +237,11 @@ private:
     }
 
     // The radiance along one primary ray: translucent layers front to back over the first opaque
-    // surface (or the background).
-    glm::vec3 trace(RTCScene rtScene, const FlatGeometry& geometry, const std::vector<SteppedMesh>& meshes, const Ray& ray,
+    // surface (or the background); and in w its coverage, the share the background does not get.
+    // Each surface that shows goes to `passes` (when given) with its share of the ray and depth.
+    glm::vec4 trace(RTCScene rtScene, const FlatGeometry& geometry, const std::vector<SteppedMesh>& meshes, const Ray& ray,
                     ShadingMode shading, std::vector<std::pair<unsigned, unsigned>>& skipped, std::int64_t& rays,
-                    bool& isOverflow) const {
+                    bool& isOverflow, exposure::PixelPasses* passes) const {
         const Scene& scene = geometry.scene();
         skipped.clear();
         glm::vec3 color(0.0f);
@@ -251,7 +266,7 @@ private:
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(rtScene, &skip.context, &hit);
             ++rays;
-            if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return color + transmittance * scene.background;
+            if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return glm::vec4(color + transmittance * scene.background, 1.0f - transmittance);
 
             const SteppedMesh& mesh = meshes[hit.hit.geomID];
             const FlatTriangle& tri = geometry.triangles()[mesh.firstTriangle + hit.hit.primID];
@@ -278,7 +293,10 @@ private:
             const glm::vec3 down = baryOnPlane(corners, faceNormal, ray.origin, ray.directionDown).value_or(bary);
             const SurfacePoint point = geometry.surfacePoint(tri, corners, normals, bary, right, down, isFrontFacing);
             const ShadedColor shaded = shadeSurface(scene, shading, point, ray.origin);
-            if (!scene.materials[tri.material].isTranslucent()) return color + transmittance * shaded.color;
+            const bool isOpaque = !scene.materials[tri.material].isTranslucent();
+            if (passes && (isOpaque || layers < m_options.maxLayers))
+                passes->add(tri.mesh, tri.material, transmittance * (isOpaque ? 1.0f : shaded.alpha), hit.ray.tfar);
+            if (isOpaque) return glm::vec4(color + transmittance * shaded.color, 1.0f);
             if (layers == m_options.maxLayers) {
                 isOverflow = true;  // past the budget: further translucent layers are left out
                 continue;
@@ -286,10 +304,10 @@ private:
             ++layers;
             color += transmittance * shaded.alpha * shaded.color;
             transmittance *= 1.0f - shaded.alpha;
-            if (transmittance <= 0.0f) return color;
+            if (transmittance <= 0.0f) return glm::vec4(color, 1.0f);
         }
         isOverflow = true;
-        return color + transmittance * scene.background;
+        return glm::vec4(color + transmittance * scene.background, 1.0f - transmittance);
     }
 
     // Barycentrics where a ray meets a triangle's plane (outside the triangle too); none past the

@@ -64,6 +64,7 @@ public:
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
         Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}, {}, 1};
+        if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "setup");
             frame.geometry.emplace(scene, float(settings.width) / float(settings.height), m_options.cameraOrder);
@@ -84,9 +85,9 @@ public:
         raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
-        const std::vector<glm::vec3> image = exposure::runTilePass(
+        Image image = exposure::runTilePass(
             grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, budget, scratch, [&](int tile, TileScratch& local, std::vector<glm::vec3>& pixels) {
+            context.progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
                 exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
                     return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
                 });
@@ -142,10 +143,11 @@ public:
             stats.setCounter("visibility_checks", m_options.checkVisibility);
         }
 
-        Image result(settings.width, settings.height);
-        std::copy(image.begin(), image.end(), result.pixels().begin());
-        return result;
+        if (frame.passes) frame.passes->writeTo(image);
+        return image;
     }
+
+    bool writesPasses() const override { return true; }
 
 private:
     struct Frame {
@@ -159,6 +161,7 @@ private:
         std::vector<raster::PixelBounds> boxes;   ///< numBoxes per segment (traversal)
         std::vector<raster::PixelBounds> bounds;  ///< per segment: the union of its boxes, for binning
         int numBoxes = 1;
+        mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
 
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
@@ -255,7 +258,7 @@ private:
     // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
     // them instead).
     bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
-                    std::size_t maxRecords, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+                    std::size_t maxRecords, TileScratch& scratch, Image& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
@@ -307,7 +310,8 @@ private:
             [&](std::uint32_t source) { return segments[source].triangle; },
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
-            });
+            },
+            nullptr, frame.passes ? &*frame.passes : nullptr);
         return true;
     }
 

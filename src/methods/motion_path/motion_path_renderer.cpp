@@ -1,8 +1,10 @@
 #include "methods/motion_path/motion_path_renderer.h"
 
 #include "exposure/pixel_shading.h"
+#include "exposure/sample_passes.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/tile_budget.h"
+#include "exposure/tile_pass.h"
 #include "exposure/triangle_surface_point.h"
 #include "exposure/visible_pieces.h"
 #include "methods/motion_path/interval.h"
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace streak {
@@ -89,6 +92,8 @@ struct TileScratch {
     std::vector<float> events;
     std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
     std::vector<glm::vec3> color;
+    std::vector<float> coverage;           ///< per sample
+    exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
     MotionPath path;
     raster::TriangleSetup setup;
@@ -112,6 +117,7 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         Frame frame(scene, settings, m_options);
+        if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "generate");
             frame.generate();
@@ -121,7 +127,8 @@ public:
             PhaseTimer timer(context.stats, "bin");
             grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
         }
-        std::vector<glm::vec3> image(std::size_t(settings.width) * settings.height, scene.background);
+        Image image(settings.width, settings.height, scene.background);
+        image.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         budget.measure();
@@ -188,10 +195,11 @@ public:
         exposure::recordSegmentPlan(stats, frame.segmented.segmentPlan());
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
-        Image result(settings.width, settings.height);
-        std::copy(image.begin(), image.end(), result.pixels().begin());
-        return result;
+        if (frame.passes) frame.passes->writeTo(image);
+        return image;
     }
+
+    bool writesPasses() const override { return true; }
 
 private:
     // The scene's motion paths, set up for rasterization: one per triangle and linear segment
@@ -238,7 +246,28 @@ private:
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         exposure::SpanShadingSettings spanShading;
         std::vector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
+        mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
     };
+
+    // Adds to the pixel's passes what shows in sample i (its sorted intervals begin to end):
+    // with exact opaque weights, each span where an interval is the nearest, at its depth in the
+    // span's middle; else each interval with a share, at its depth in its middle.
+    static void addShownSurfaces(const Frame& frame, TileScratch& scratch, std::uint32_t begin, std::uint32_t end, std::size_t i,
+                                 bool hasVisibleSpans) {
+        auto add = [&](const Interval& interval, float share, float t0, float t1) {
+            const FlatTriangle& t = frame.geometry.triangles()[frame.paths[interval.source].triangle];
+            scratch.passes.add(t.mesh, t.material, share, motion_path::depthAt(interval, scratch.knots, 0.5f * (t0 + t1)));
+        };
+        if (hasVisibleSpans) {
+            for (std::uint32_t v = scratch.visibleRuns[i]; v < scratch.visibleRuns[i + 1]; ++v) {
+                const exposure::VisibleSpan& shown = scratch.visible[v];
+                add(scratch.sorted[shown.interval], shown.weight, shown.t0, shown.t1);
+            }
+            return;
+        }
+        for (std::uint32_t k = begin; k < end; ++k)
+            if (scratch.weights[k] > 0.0f) add(scratch.sorted[k], scratch.weights[k], scratch.sorted[k].t0, scratch.sorted[k].t1);
+    }
 
     // Builds the intervals of one sample from its fragments (sorted by path), appending them to
     // `out`. Depth and facing are all the resolve needs; opaque intervals are shaded later, and
@@ -303,7 +332,7 @@ private:
 
     // A tile, in halves while its fragments would pass shareFragments (exposure::renderWithinShare).
     void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, std::size_t shareFragments, TileScratch& scratch,
-                    std::vector<glm::vec3>& image) const {
+                    Image& image) const {
         scratch.movingTriangles.clear();
         exposure::renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
             return renderRect(frame, grid.items(tile), rect, isPixel, shareFragments, scratch, image);
@@ -331,7 +360,7 @@ private:
     // The pixels of rect, within a tile whose paths are `items`; false, with the image left
     // alone, once its fragments pass shareFragments (a single pixel cuts them instead).
     bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
-                    std::size_t shareFragments, TileScratch& scratch, std::vector<glm::vec3>& image) const {
+                    std::size_t shareFragments, TileScratch& scratch, Image& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
@@ -492,6 +521,7 @@ private:
             const ShutterWindow window = sampleWindow(frame, rect, first);
             scratch.pixelShading.begin(frame.pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
                                        options.shading.cellsFor(frame.pattern.samplesPerAxis()));
+            if (frame.passes) scratch.passes.begin();
             for (int s = 0; s < spp; ++s) {
                 const std::size_t i = first + std::size_t(s);
                 glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
@@ -524,6 +554,7 @@ private:
                             spans.push_back({triangle, shown.t0, shown.t1, shown.weight, true});
                     }
                 scratch.color[i] = sum;
+                if (frame.passes) addShownSurfaces(frame, scratch, begin, end, i, hasVisibleSpans);
                 if (spans.empty()) continue;
                 exposure::mergeAbuttingPieces(spans);
                 scratch.pixelShading.add(s, sampleNdc(frame, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
@@ -536,13 +567,17 @@ private:
                     return frame.shade(triangle, t0, t1, site, window, scratch.movingTriangles);
                 },
                 std::span<glm::vec3>(scratch.color).subspan(first, std::size_t(spp)), counters.shading);
+            if (frame.passes) {
+                const int pixel = int(first / std::size_t(spp)), tileWidth = rect.x1 - rect.x0 + 1;
+                scratch.passes.finish(*frame.passes, rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, 1.0f / float(spp));
+            }
         }
         counters.shadeSeconds += secondsSince(start);
 
-        // The image holds the background already; replace each tile pixel with its mean.
-        for (int py = rect.y0; py <= rect.y1; ++py)
-            for (int px = rect.x0; px <= rect.x1; ++px) image[std::size_t(py) * frame.viewport.width + px] = glm::vec3(0.0f);
-        raster::addTileToImage(rect, spp, scratch.color, 1.0f, image, frame.viewport.width);
+        // Each tile pixel is the mean of its samples; coverage is what the background does not take.
+        scratch.coverage.resize(numSamples);
+        for (std::size_t i = 0; i < numSamples; ++i) scratch.coverage[i] = 1.0f - scratch.backgroundWeights[i];
+        exposure::setTilePixels(rect, spp, scratch.color, scratch.coverage, image);
         return true;
     }
 

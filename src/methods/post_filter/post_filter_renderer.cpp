@@ -64,6 +64,7 @@ private:
         frame.width = settings.width, frame.height = settings.height;
         const std::size_t numPixels = std::size_t(settings.width) * std::size_t(settings.height);
         frame.color.assign(numPixels, glm::vec3(0.0f));
+        frame.coverage.assign(numPixels, 0.0f);
         frame.depth.assign(numPixels, std::numeric_limits<float>::infinity());
         frame.velocity.assign(numPixels, glm::vec2(0.0f));
         const exposure::InstantDraw draw{settings.shading};
@@ -74,6 +75,7 @@ private:
             exposure::drawInstantTile(geometry, instant, grid, tile, pattern, draw, local);
             const raster::PixelBounds rect = grid.tileBounds(tile);
             raster::addTileToImage(rect, spp, local.color, 1.0f, frame.color, settings.width);
+            raster::addTileToImage(rect, spp, local.coverage, 1.0f, frame.coverage, settings.width);
             const int tileWidth = rect.x1 - rect.x0 + 1;
             for (int py = rect.y0; py <= rect.y1; ++py)
                 for (int px = rect.x0; px <= rect.x1; ++px) {

@@ -40,6 +40,7 @@ struct TileScratch {
     std::vector<NearestHit> nearest;
     std::vector<float> opaqueInvW;
     std::vector<glm::vec3> color;
+    std::vector<float> coverage;
     std::vector<raster::TranslucentFragment> translucent;
     raster::TriangleSetup setup;              ///< reused: large, and tests are many
 };
@@ -51,7 +52,8 @@ public:
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const Frame frame(scene, settings);
         raster::TileGrid grid(frame.viewport, kTileSize, settings.region);
-        std::vector<glm::vec3> sum(std::size_t(settings.width) * settings.height, glm::vec3(0.0f));
+        Image sum(settings.width, settings.height);
+        sum.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
         std::vector<raster::PixelBounds> bounds(frame.geometry.triangles().size());
         tbb::enumerable_thread_specific<TileScratch> scratch;
         std::atomic<std::int64_t> tests{0};
@@ -73,13 +75,13 @@ public:
             if (context.progress) context.progress->update(double(j + 1) / m_samples);
         }
 
-        Image image(settings.width, settings.height);
         const float norm = 1.0f / float(m_samples);
-        for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm;
+        for (glm::vec3& p : sum.pixels()) p *= norm;
+        for (float& a : sum.alpha()) a *= norm;
         context.stats.setCounter("time_samples_per_position", m_samples);
         context.stats.setCounter("samples_per_pixel", double(m_samples) * frame.pattern.count());
         context.stats.setCounter("triangle_tests", double(tests.load()));
-        return image;
+        return sum;
     }
 
 private:
@@ -210,7 +212,7 @@ private:
     // All samples of stratum j in one tile: times, visibility, shading, translucency; adds the
     // tile's mean colour (weighted 1/S) to `sum`. Returns the number of triangle tests.
     std::int64_t renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, int j,
-                            const std::vector<raster::PixelBounds>& bounds, TileScratch& scratch, std::vector<glm::vec3>& sum) const {
+                            const std::vector<raster::PixelBounds>& bounds, TileScratch& scratch, Image& sum) const {
         const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
@@ -259,6 +261,7 @@ private:
         }
 
         scratch.color.resize(numSamples);
+        scratch.coverage.resize(numSamples);
         scratch.opaqueInvW.resize(numSamples);
         for (int py = rect.y0; py <= rect.y1; ++py)
             for (int px = rect.x0; px <= rect.x1; ++px)
@@ -266,7 +269,7 @@ private:
                     const std::size_t i = sampleIndex(px, py, a);
                     const NearestHit& n = scratch.nearest[i];
                     scratch.opaqueInvW[i] = n.invW;
-                    scratch.color[i] = frame.scene.background;
+                    scratch.color[i] = frame.scene.background, scratch.coverage[i] = 0.0f;
                     if (n.invW <= 0.0f) continue;
                     const float t = scratch.time[i];
                     const std::int64_t X = std::int64_t(px) * raster::kSubpixelScale + frame.pattern.offsets[a].x;
@@ -274,11 +277,12 @@ private:
                     SampleHit hit;
                     // The same test again, deterministic, to recover where the winner was hit.
                     if (frame.hit(n.triangle, t, frame.isCameraStatic ? identity : scratch.clipFromWorld[i], X, Y, scratch.setup, hit))
-                        scratch.color[i] = frame.shade(hit, t).color;
+                        scratch.color[i] = frame.shade(hit, t).color, scratch.coverage[i] = 1.0f;
                 }
-        if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color);
+        if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color, scratch.coverage);
 
-        raster::addTileToImage(rect, spp, scratch.color, 1.0f, sum, frame.settings.width);
+        raster::addTileToImage(rect, spp, scratch.color, 1.0f, sum.pixels(), frame.settings.width);
+        raster::addTileToImage(rect, spp, scratch.coverage, 1.0f, sum.alpha(), frame.settings.width);
         return tests;
     }
 

@@ -175,7 +175,7 @@ void main() {
     }
     if (isOverflowing) atomicAdd(intervalOverflowSamples, 1u);
     if (n == 0) {
-        imageStore(u_output, s, vec4(u_background.rgb, 1.0));
+        imageStore(u_output, s, vec4(u_background.rgb, 0.0));  // alpha: coverage
         return;
     }
     atomicAdd(intervalCount, uint(n));
@@ -280,5 +280,5 @@ void main() {
         i = j;
     }
     atomicAdd(shadedSpans, uint(shaded));
-    imageStore(u_output, s, vec4(sum, 1.0));
+    imageStore(u_output, s, vec4(sum, 1.0 - background));
 }

@@ -1,4 +1,5 @@
-// post-filter-gl: the gather of methods/post_filter/reconstruction_filter.cpp, per pixel.
+// post-filter-gl: the gather of methods/post_filter/reconstruction_filter.cpp, per pixel, of
+// colour and coverage (alpha) alike.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(rgba32f, binding = 0) uniform readonly image2D u_pixelColor;
@@ -25,16 +26,16 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = ivec2(u_viewport.z, u_viewport.w);
     if (p.x >= size.x || p.y >= size.y) return;
-    vec3 centre = imageLoad(u_pixelColor, p).rgb;
+    vec4 centre = imageLoad(u_pixelColor, p);
     vec2 vn = imageLoad(u_neighborMax, p / u_gather.x).xy;
     if (length(vn) <= 0.5) {
-        imageStore(u_output, p, vec4(centre, 1.0));
+        imageStore(u_output, p, centre);
         return;
     }
     vec4 mx = imageLoad(u_pixelMotion, p);
     float speedX = length(mx.xy), zx = mx.z;
     float weight = 1.0 / max(speedX, 0.5);
-    vec3 sum = centre * weight;
+    vec4 sum = centre * weight;
     float jitter = jitters[p.y * size.x + p.x];
     int taps = u_gather.y;
     for (int i = 0; i < taps; ++i) {
@@ -48,7 +49,7 @@ void main() {
         float alpha = softDepthCompare(zy, zx, extent) * cone(distance, speedY) + softDepthCompare(zx, zy, extent) * cone(distance, speedX) +
                       2.0 * cylinder(distance, speedY) * cylinder(distance, speedX);
         weight += alpha;
-        sum += alpha * imageLoad(u_pixelColor, q).rgb;
+        sum += alpha * imageLoad(u_pixelColor, q);
     }
-    imageStore(u_output, p, vec4(sum / weight, 1.0));
+    imageStore(u_output, p, sum / weight);
 }

@@ -1,4 +1,4 @@
-// post-filter-gl: per pixel, the colour box-filtered over its samples, and the depth and
+// post-filter-gl: per pixel, the colour and coverage box-filtered over its samples, and the depth and
 // velocity of its nearest sample, clamped as clampVelocities does (methods/post_filter).
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -13,12 +13,12 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= u_viewport.z || p.y >= u_viewport.w) return;
     int n = u_flags.y;
-    vec3 color = vec3(0.0);
+    vec4 color = vec4(0.0);  // rgb, coverage
     vec4 nearest = vec4(0.0, 0.0, 1e30, 0.0);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             ivec2 s = p * n + ivec2(i, j);
-            color += imageLoad(u_sampleColor, s).rgb;
+            color += imageLoad(u_sampleColor, s);
             vec4 m = imageLoad(u_sampleMotion, s);
             if (m.w > 0.0 && m.z < nearest.z) nearest = m;
         }
@@ -26,6 +26,6 @@ void main() {
     float speed = length(v);
     if (!(speed >= 0.5)) v = vec2(0.0);
     else if (speed > u_maxRadius) v *= u_maxRadius / speed;
-    imageStore(u_pixelColor, p, vec4(color / float(n * n), 1.0));
+    imageStore(u_pixelColor, p, color / float(n * n));
     imageStore(u_pixelMotion, p, vec4(v, nearest.z, 0.0));
 }
