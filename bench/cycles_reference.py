@@ -276,7 +276,7 @@ def render(scene, scene_args, spp_list, out_dir, streak=STREAK, blender="blender
     noise is independent). Returns {spp: {"path": exr, "seconds": render time}} and writes it,
     with the job, to out_dir/cycles.json. With passes, each render is a multilayer EXR with a
     transparent film (ViewLayer.Combined.A) and Cryptomatte object and material layers (6
-    levels), and is named cycles-passes-<spp>.exr."""
+    levels) and the Normal pass, and is named cycles-passes-<spp>.exr."""
     os.makedirs(out_dir, exist_ok=True)
     if scene.startswith("builtin:"):
         if scene_args:
@@ -643,6 +643,7 @@ class CyclesScene:
             layer = scene.view_layers[0]
             layer.use_pass_cryptomatte_object = layer.use_pass_cryptomatte_material = True
             layer.pass_cryptomatte_depth = 6
+            layer.use_pass_normal = True
             settings.file_format, settings.color_mode = "OPEN_EXR_MULTILAYER", "RGBA"
         frame = int(math.floor(self.open_frame))
         # Cycles' ray times cover [a, b] of its nominal shutter: widen and shift it so they cover

@@ -3,10 +3,12 @@
 
 Each model at 320x240 (its frame, shutter and animation as bench/ground_truth_bench.py has them)
 is rendered by Cycles twice at --spp (1024; seeds 0 and 1) with a transparent film and
-Cryptomatte object and material layers (bench/cycles_reference.py --passes), and by streak with
-`--aa 8 --shading unlit --transparent --passes object_id,material_id` (--method, analytic by
-default). For the alpha and for each object's and material's matte (the coverage of its name
-summed over the ranks, as a compositor's Cryptomatte node reads it) it reports:
+Cryptomatte object and material layers and the Normal pass (bench/cycles_reference.py
+--passes), and by streak with `--aa 8 --shading unlit --transparent --passes
+object_id,material_id,normal` (--method, analytic by default). For the alpha, for each object's
+and material's matte (the coverage of its name summed over the ranks, as a compositor's
+Cryptomatte node reads it) and for the normal (Blender's z-up axes turned to glTF's y-up, as its
+importer turns the scene; RMS of the vector difference) it reports:
   - noise: Cycles' own RMS noise, RMS(seed 0 - seed 1) / sqrt(2);
   - error: RMS(streak - Cycles seed 0), which is noise and streak's own error together;
   - excess: sqrt(max(error^2 - noise^2, 0)), the part of the error Cycles' noise does not
@@ -52,13 +54,13 @@ def manifest(layers, type_name):
 
 
 def matte(layers, layer_name, name_id):
-    """The coverage of one ID summed over the ranks of layer `layer_name` ({layer}00.R ...)."""
+    """The coverage of one ID summed over the ranks of layer `layer_name` ({layer}00.r ...)."""
     out = None
     for level in range(100):
         base = f"{layer_name}{level:02d}"
-        if base + ".R" not in layers:
+        if base + ".r" not in layers:
             break
-        for idc, cov in ((".R", ".G"), (".B", ".A")):
+        for idc, cov in ((".r", ".g"), (".b", ".a")):
             ids = layers[base + idc]
             term = np.where(ids == np.float32(name_id), layers[base + cov], 0.0)
             out = term if out is None else out + term
@@ -71,9 +73,19 @@ def alpha_of(layers):
     return layers["image"][..., 3]
 
 
+def normal_of(layers, is_blender):
+    """The normal pass as H x W x 3 in glTF's axes."""
+    if is_blender:
+        x, y, z = (layers[f"ViewLayer.Normal.{c}"] for c in "XYZ")
+        return np.stack([x, z, -y], axis=-1)  # Blender z-up to glTF y-up: (x, y, z) -> (x, z, -y)
+    return np.stack([layers[f"normal.{c}"] for c in "XYZ"], axis=-1)
+
+
 def rms(a, mask=None):
-    d = a if mask is None else a[mask]
-    return float(np.sqrt(np.mean(np.square(d)))) if d.size else 0.0
+    """RMS over the pixels (of a vector's length, for H x W x 3)."""
+    squared = np.square(a) if a.ndim == 2 else np.sum(np.square(a), axis=-1)
+    d = squared if mask is None else squared[mask]
+    return float(np.sqrt(np.mean(d))) if d.size else 0.0
 
 
 def row(label, streak_values, cycles0, cycles1, mask=None):
@@ -115,12 +127,14 @@ def main():
         mine = os.path.join(out, f"streak-{args.method}.exr")
         command = [args.streak, "render", scene, *ground_truth_bench.scene_flags(flags), "-m", args.method, "--width", str(args.width),
                    "--height", str(args.height), "--aa", str(args.aa), "--shading", "unlit", "--transparent",
-                   "--passes", "object_id,material_id", "-o", mine]
+                   "--passes", "object_id,material_id,normal", "-o", mine]
         start = time.perf_counter()
         subprocess.run(command, check=True)
         seconds = time.perf_counter() - start
         streak_layers = sk.read_layers(mine)
         rows = [row("alpha", alpha_of(streak_layers), alpha_of(cycles[0]), alpha_of(cycles[1]))]
+        rows.append(row("normal", normal_of(streak_layers, False), normal_of(cycles[0], True), normal_of(cycles[1], True),
+                        (alpha_of(streak_layers) > 0) | (alpha_of(cycles[0]) > 0) | (alpha_of(cycles[1]) > 0)))
         unmatched = []
         for type_name in ("CryptoObject", "CryptoMaterial"):
             ours, our_layer = manifest(streak_layers, type_name)

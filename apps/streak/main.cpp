@@ -500,6 +500,8 @@ int runCompare(const std::string& a, const std::string& b, const std::string& he
     out.precision(4);
     out << std::fixed << "PSNR: " << decibels(c.psnr) << " dB\nSSIM: " << c.ssim << "\n";
     out << "foreground PSNR: " << decibels(c.foregroundPsnr) << " dB (" << c.foregroundPixels << " pixels)\n";
+    for (const sk::PassComparison& p : sk::comparePasses(imageA, imageB))
+        out << p.pass << ": RMS " << std::setprecision(6) << p.rms << ", max " << p.maxError << " (" << p.pixels << " pixels)\n" << std::setprecision(4);
     if (!heatmap.empty()) {
         const sk::Heatmap map = sk::errorHeatmap(imageA, imageB);
         sk::writeImage(map.image, heatmap);
@@ -627,7 +629,7 @@ int run(int argc, char** argv) {
     render->add_option("--passes", renderArgs.passes,
                        "passes written beside the colour into the EXR, comma-separated: depth (Z, Z.min), object_id and material_id "
                        "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact, embree sampled), "
-                       "albedo (albedo.R/G/B: every method, one more render, unlit)");
+                       "albedo (albedo.R/G/B: every method, one more render, unlit), normal (normal.X/Y/Z: the CPU methods, one more render)");
     render->add_option("--cryptomatte-ranks", renderArgs.cryptomatteRanks, "Cryptomatte (ID, coverage) pairs kept per pixel")->capture_default_str();
     render->add_flag("--transparent", renderArgs.transparent,
                      "transparent background (Blender's Film > Transparent): RGBA, alpha the exact coverage; EXR premultiplied, PNG straight");
@@ -664,7 +666,8 @@ int run(int argc, char** argv) {
     std::string compareA, compareB, heatmap;
     double foregroundLevel = 2.0;
     CLI::App* compare = app.add_subcommand(
-        "compare", "print PSNR (dB), SSIM and foreground PSNR (over the pixels where either image is above the threshold) of two images of the same size");
+        "compare", "print PSNR (dB), SSIM and foreground PSNR (over the pixels where either image is above the threshold) of two images of the same size; "
+                   "then, for the passes both have, RMS and largest difference: alpha, each channel (Z, albedo.R, ...) and each Cryptomatte name's matte");
     compare->add_option("a", compareA, "first image (.png or .exr)")->required();
     compare->add_option("b", compareB, "second image (.png or .exr)")->required();
     compare->add_option("--heatmap", heatmap, "write a false-colour image of the per-pixel error");

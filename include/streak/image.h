@@ -20,7 +20,7 @@ struct Image {
     std::vector<float> alpha;  ///< width x height, or empty: opaque
     bool hasAlpha() const { return !alpha.empty(); }
     // Passes (RenderSettings::passes; an EXR's other channels): width x height floats each, by
-    // channel name ("Z", "CryptoObject00.R", ...), and the string attributes that describe them
+    // channel name ("Z", "CryptoObject00.r", ...), and the string attributes that describe them
     // (Cryptomatte's "cryptomatte/<key>/manifest", ...). Written to EXR only.
     struct Channel {
         std::string name;
@@ -70,6 +70,19 @@ struct Comparison {
     std::size_t foregroundPixels = 0;
 };
 Comparison compare(const Image& a, const Image& b, float foregroundThreshold = 2.0f / 255.0f);
+
+// How two images' passes differ, pass by pass, for the passes both have: alpha, each named
+// channel but Cryptomatte's (over the pixels where both values are below 1e9, so depth's
+// "nothing shows" is left out), and each name of each Cryptomatte type (its matte; types matched
+// by the part of their name after the last '.', so Blender's "ViewLayer.CryptoObject" meets
+// "CryptoObject"). RMS and largest absolute difference, and over how many pixels.
+struct PassComparison {
+    std::string pass;  ///< "alpha", "Z", "CryptoObject Cesium_Man", ...
+    double rms = 0.0;
+    double maxError = 0.0;
+    std::size_t pixels = 0;
+};
+std::vector<PassComparison> comparePasses(const Image& a, const Image& b);
 
 // A false-colour image of the per-pixel error (white: the largest, maxError).
 struct Heatmap {

@@ -63,7 +63,9 @@ struct RenderSettings {
     // (ID, coverage) pairs of the scene's object and material names, the coverages of a pixel
     // summing to its alpha): written by motion-path, analytic and higher-order (exact) and embree
     // (sampled), refused by the others. "albedo" (albedo.R/G/B: the unlit colour of what shows,
-    // premultiplied as the colour): every method, by one more render shaded unlit.
+    // premultiplied as the colour): every method, by one more render shaded unlit. "normal"
+    // (normal.X/Y/Z: the world-space unit normal of what shows, averaged and premultiplied
+    // likewise): the CPU methods, by one more render.
     std::vector<std::string> passes;
     int cryptomatteRanks = 6;
     bool sampleGrid = false;

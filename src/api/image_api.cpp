@@ -6,7 +6,10 @@
 #include "image/image_io.h"
 #include "image/metrics.h"
 
+#include <cctype>
+#include <cmath>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -102,10 +105,17 @@ std::vector<float> cryptomatteMatte(const Image& image, const std::string& type,
     const float id = cryptomatteId(name);
     const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
     std::vector<float> matte(pixels, 0.0f);
+    // Lower-case channels as the specification and Blender write them; upper case read too.
+    auto find = [&](int rank, bool isCoverage) {
+        std::string name = cryptomatteChannel(type, rank, isCoverage);
+        if (const Image::Channel* c = image.channel(name)) return c;
+        name.back() = char(std::toupper(static_cast<unsigned char>(name.back())));
+        return image.channel(name);
+    };
     int ranks = 0;
     for (;; ++ranks) {
-        const Image::Channel* ids = image.channel(cryptomatteChannel(type, ranks, false));
-        const Image::Channel* coverage = image.channel(cryptomatteChannel(type, ranks, true));
+        const Image::Channel* ids = find(ranks, false);
+        const Image::Channel* coverage = find(ranks, true);
         if (!ids || !coverage) break;
         for (std::size_t i = 0; i < pixels; ++i)
             if (ids->values[i] == id) matte[i] += coverage->values[i];
@@ -124,6 +134,66 @@ Comparison compare(const Image& a, const Image& b, float foregroundThreshold) {
     const streak::Image x = imageOf(a), y = imageOf(b);
     const ForegroundPsnr foreground = foregroundPsnr(x, y, foregroundThreshold);
     return {psnr(x, y), ssim(x, y), foreground.psnr, foreground.pixels};
+}
+
+namespace {
+
+// The Cryptomatte types of an image: {short type name ("CryptoObject"): (full type name, {name: id})}.
+std::map<std::string, std::pair<std::string, std::map<std::string, float>>> cryptomatteTypes(const Image& image) {
+    std::map<std::string, std::pair<std::string, std::map<std::string, float>>> types;
+    for (const auto& [key, value] : image.metadata) {
+        const std::string suffix = "/name";
+        if (key.rfind("cryptomatte/", 0) != 0 || key.size() < suffix.size() || key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0)
+            continue;
+        const auto manifest = image.metadata.find(key.substr(0, key.size() - suffix.size()) + "/manifest");
+        std::map<std::string, float> names;
+        if (manifest != image.metadata.end())
+            for (const std::string& name : cryptomatteManifestNames(manifest->second)) names[name] = cryptomatteId(name);
+        types[value.substr(value.rfind('.') + 1)] = {value, names};
+    }
+    return types;
+}
+
+void addDifference(std::vector<PassComparison>& out, const std::string& pass, const std::vector<float>& a, const std::vector<float>& b,
+                   bool skipEmpty) {
+    PassComparison c;
+    c.pass = pass;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (skipEmpty && !(a[i] < 1e9f && b[i] < 1e9f)) continue;
+        const double d = double(a[i]) - double(b[i]);
+        sum += d * d, c.maxError = std::max(c.maxError, std::abs(d)), ++c.pixels;
+    }
+    c.rms = c.pixels ? std::sqrt(sum / double(c.pixels)) : 0.0;
+    out.push_back(c);
+}
+
+}  // namespace
+
+std::vector<PassComparison> comparePasses(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height) throw Error("compare: the images' sizes differ");
+    std::vector<PassComparison> out;
+    if (a.hasAlpha() && b.hasAlpha()) addDifference(out, "alpha", a.alpha, b.alpha, false);
+    const auto typesA = cryptomatteTypes(a), typesB = cryptomatteTypes(b);
+    auto isCryptomatte = [&](const std::string& channel) {
+        for (const auto& [shortName, type] : typesA)
+            if (channel.rfind(type.first, 0) == 0) return true;
+        return false;
+    };
+    for (const Image::Channel& c : a.channels)
+        if (const Image::Channel* other = b.channel(c.name); other && !isCryptomatte(c.name)) addDifference(out, c.name, c.values, other->values, true);
+    for (const auto& [shortName, type] : typesA) {
+        const auto other = typesB.find(shortName);
+        if (other == typesB.end()) continue;
+        try {
+            for (const auto& [name, id] : type.second)
+                if (other->second.second.count(name))
+                    addDifference(out, shortName + " " + name, cryptomatteMatte(a, type.first, name), cryptomatteMatte(b, other->second.first, name), false);
+        } catch (const Error&) {
+            // Metadata naming a type whose layers are missing: nothing of it to compare.
+        }
+    }
+    return out;
 }
 
 Heatmap errorHeatmap(const Image& a, const Image& b) {

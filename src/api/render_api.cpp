@@ -10,6 +10,7 @@
 #include <glm/trigonometric.hpp>
 #include <tbb/global_control.h>
 
+#include <array>
 #include <cstdio>
 #include <initializer_list>
 
@@ -51,25 +52,30 @@ Stats statsOf(const RenderStats& in) {
     return out;
 }
 
-// The albedo pass: the same visibility shaded unlit (a second render of the method, with the
-// same samples), over a transparent background: each pixel's coverage-weighted albedo,
-// premultiplied as the colour is. Timed as "albedo render".
-void addAlbedoPass(streak::Renderer& method, const streak::RenderSettings& settings, const std::string& methodName, const streak::Scene& scene,
-                   streak::Image& image, RenderStats& stats) {
-    streak::RenderSettings unlit = settings;
-    unlit.shading = ShadingMode::Unlit;
-    unlit.passes = PassRequest();
-    RenderStats albedoStats;
-    RenderContext context{albedoStats};
-    PhaseTimer timer(stats, "albedo render");
-    streak::Image albedo = method.render(scene, unlit, context);
-    if (!albedo.hasAlpha()) throw RenderFailure("method " + methodName + " gave no coverage for the albedo pass");
-    albedo = withTransparentBackground(std::move(albedo), scene.background);
-    static constexpr const char* kChannels[] = {"albedo.R", "albedo.G", "albedo.B"};
+// A pass that is the same visibility shaded another way (a render of the method again, with the
+// same samples), over a transparent background: the albedo (unlit) or the normal. Each pixel's
+// coverage-weighted value, premultiplied as the colour is, into channels layer.X, .Y, .Z (or
+// .R, .G, .B). Timed as "<layer> render".
+void addShadedPass(streak::Renderer& method, const streak::RenderSettings& settings, ShadingMode mode, const char* layer,
+                   const std::array<const char*, 3>& channels, const std::string& methodName, const streak::Scene& scene, streak::Image& image,
+                   RenderStats& stats) {
+    streak::RenderSettings shaded = settings;
+    shaded.shading = mode;
+    shaded.passes = PassRequest();
+    RenderStats passStats;
+    RenderContext context{passStats};
+    PhaseTimer timer(stats, std::string(layer) + " render");
+    streak::Image pass = method.render(scene, shaded, context);
+    if (!pass.hasAlpha()) throw RenderFailure("method " + methodName + " gave no coverage for the " + layer + " pass");
+    pass = mode == ShadingMode::Normal ? std::move(pass) : withTransparentBackground(std::move(pass), scene.background);
     for (int c = 0; c < 3; ++c) {
-        std::vector<float> values(albedo.pixels().size());
-        for (std::size_t i = 0; i < values.size(); ++i) values[i] = albedo.pixels()[i][c];
-        image.addChannel(kChannels[c], std::move(values));
+        std::vector<float> values(pass.pixels().size());
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            // Normals may be negative: the background's share is taken out without clamping.
+            const float background = mode == ShadingMode::Normal ? scene.background[c] * (1.0f - pass.alpha()[i]) : 0.0f;
+            values[i] = pass.pixels()[i][c] - background;
+        }
+        image.addChannel(std::string(layer) + "." + channels[std::size_t(c)], std::move(values));
     }
 }
 
@@ -104,7 +110,8 @@ struct Renderer::Impl {
     RenderSettings settings;
     streak::RenderSettings layerSettings;
     std::unique_ptr<streak::Renderer> method;
-    bool albedo = false;  ///< the albedo pass: a second render, unlit
+    bool albedo = false;  ///< the albedo pass: another render, unlit
+    bool normal = false;  ///< the normal pass: another render, shading normals
 };
 
 Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Impl>()) {
@@ -135,11 +142,14 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
         else if (pass == "object_id") s.passes.objectId = true;
         else if (pass == "material_id") s.passes.materialId = true;
         else if (pass == "albedo") m_impl->albedo = true;
-        else throw Error("render: unknown pass '" + pass + "' (depth, object_id, material_id, albedo)");
+        else if (pass == "normal") m_impl->normal = true;
+        else throw Error("render: unknown pass '" + pass + "' (depth, object_id, material_id, albedo, normal)");
     }
     if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
         throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
     s.passes.cryptoRanks = settings.cryptomatteRanks;
+    if (m_impl->normal && !m_impl->method->shadesNormals())
+        throw Error("method " + settings.method + " does not write the normal pass: the CPU methods do");
     if (s.passes.any() && !m_impl->method->writesPasses())
         throw Error("method " + settings.method + " does not write the depth and Cryptomatte passes (" +
                     std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : "material_id") +
@@ -196,7 +206,10 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
         if (!settings.transparent) image.setAlpha({});
         else if (!image.hasAlpha()) throw RenderFailure("method " + settings.method + " gave no coverage for a transparent background");
         else image = withTransparentBackground(std::move(image), in.scene.background);
-        if (m_impl->albedo) addAlbedoPass(*m_impl->method, m_impl->layerSettings, settings.method, in.scene, image, stats);
+        if (m_impl->albedo)
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Unlit, "albedo", {"R", "G", "B"}, settings.method, in.scene, image, stats);
+        if (m_impl->normal)
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Normal, "normal", {"X", "Y", "Z"}, settings.method, in.scene, image, stats);
         const std::optional<Region>& r = settings.region;
         result.image = imageOf(r ? image.region(r->x0, r->y0, r->x1, r->y1) : image);
     }

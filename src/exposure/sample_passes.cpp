@@ -79,12 +79,12 @@ void PixelPasses::begin() {
     m_nearest = kEmptyDepth;
 }
 
-void PixelPasses::add(std::uint32_t object, std::uint32_t material, float share, float depth) {
+void PixelPasses::add(std::uint32_t object, std::uint32_t material, float share, float depth, float nearest) {
     if (!(share > 0.0f)) return;
     addShare(m_objects, object, share);
     addShare(m_materials, material, share);
     m_depthSum += double(share) * double(depth), m_shareSum += double(share);
-    m_nearest = std::min(m_nearest, depth);
+    m_nearest = std::min(m_nearest, nearest);
 }
 
 void PixelPasses::finish(PassFrame& frame, int x, int y, float sampleWeight) {

@@ -42,8 +42,8 @@ class PixelPasses {
 public:
     void begin();
     // A surface of mesh `object` and material `material` showing in a sample of the pixel: its
-    // share of that sample and its view depth.
-    void add(std::uint32_t object, std::uint32_t material, float share, float depth);
+    // share of that sample, its mean view depth over the time it shows and the nearest it gets.
+    void add(std::uint32_t object, std::uint32_t material, float share, float depth, float nearest);
     // Writes the pixel: each sample weighs sampleWeight (1 / samples for the box filter).
     void finish(PassFrame& frame, int x, int y, float sampleWeight);
 

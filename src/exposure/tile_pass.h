@@ -238,9 +238,9 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
             [&](std::uint32_t triangle, float t0, float t1) { return shade(triangle, t0, t1, sampleSite(ndc, pattern.samplesPerAxis()), row); },
             scratch.resolve, scratch.counters.resolve);
         if (passes)
-            forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth) {
+            forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth, float nearest) {
                 const FlatTriangle& t = triangles[triangleOf(source)];
-                scratch.passes.add(t.mesh, t.material, share, depth);
+                scratch.passes.add(t.mesh, t.material, share, depth, nearest);
             });
         return ResolvedSample{color, scratch.resolve.coverage};
     }, shade);

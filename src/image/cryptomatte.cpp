@@ -65,7 +65,16 @@ std::string cryptomatteKey(std::string_view typeName) {
 std::string cryptomatteManifest(const std::vector<std::string>& names) {
     nlohmann::json manifest = nlohmann::json::object();
     for (const std::string& name : names) manifest[name] = cryptomatteHex(cryptomatteId(name));
-    return manifest.dump();
+    // A name that is not UTF-8 keeps its place, its bad bytes replaced (the ID hashes the bytes).
+    return manifest.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::vector<std::string> cryptomatteManifestNames(const std::string& manifest) {
+    const nlohmann::json json = nlohmann::json::parse(manifest, nullptr, /*allow_exceptions=*/false);
+    std::vector<std::string> names;
+    if (json.is_object())
+        for (const auto& item : json.items()) names.push_back(item.key());
+    return names;
 }
 
 int cryptomatteLayers(int ranks) { return (ranks + 1) / 2; }
@@ -73,7 +82,7 @@ int cryptomatteLayers(int ranks) { return (ranks + 1) / 2; }
 std::string cryptomatteChannel(std::string_view typeName, int rank, bool isCoverage) {
     char layer[8];
     std::snprintf(layer, sizeof layer, "%02d", rank / 2);
-    static constexpr const char* kChannels[] = {"R", "G", "B", "A"};
+    static constexpr const char* kChannels[] = {"r", "g", "b", "a"};  // as the specification and Blender name them
     return std::string(typeName) + layer + "." + kChannels[(rank % 2) * 2 + (isCoverage ? 1 : 0)];
 }
 

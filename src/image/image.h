@@ -20,7 +20,7 @@ struct FramePlacement {
 };
 
 // A named float channel of an image beside its colour: a pass (depth "Z", Cryptomatte's
-// "CryptoObject00.R", ...), one value per pixel. EXR writes it under its name.
+// "CryptoObject00.r", ...), one value per pixel. EXR writes it under its name.
 struct ImageChannel {
     std::string name;
     std::vector<float> values;

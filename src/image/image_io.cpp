@@ -244,7 +244,10 @@ Image decodeExr(const std::vector<char>& bytes, const std::string& path) {
     std::vector<ImageChannel> passes;
     for (Imf::ChannelList::ConstIterator c = channels.begin(); c != channels.end(); ++c) {
         const std::string name = c.name();
-        if (name == "R" || name == "G" || name == "B" || name == "A" || (grey && name == "Y")) continue;
+        // Subsampled channels (luminance/chroma images' RY, BY) are not passes: left out.
+        if (name == "R" || name == "G" || name == "B" || name == "A" || (grey && name == "Y") || c.channel().xSampling != 1 ||
+            c.channel().ySampling != 1)
+            continue;
         passes.push_back({name, std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f)});
     }
     for (ImageChannel& c : passes)

@@ -230,7 +230,7 @@ PYBIND11_MODULE(streak, m) {
         "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
         "an H x W x 4 array whose alpha is each pixel's exact coverage and whose colour is premultiplied by it; "
         "passes ['depth', 'object_id', 'material_id']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
-        "(Z, Z.min, CryptoObject00.R, ...; cryptomatte_ranks pairs)");
+        "(Z, Z.min, CryptoObject00.r, ...; cryptomatte_ranks pairs)");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));
@@ -250,6 +250,16 @@ PYBIND11_MODULE(streak, m) {
     m.def("read_image", [](const std::string& path) { return arrayOf(sk::readImage(path)); }, py::arg("path"));
     m.def("read_layers", [](const std::string& path) { return layersOf(sk::readImage(path)); }, py::arg("path"),
           "an image file with its passes: {'image': H x W x 3|4, channel name: H x W, 'metadata': {...}}");
+    m.def("compare_passes", [](const std::string& a, const std::string& b) {
+        py::list out;
+        for (const sk::PassComparison& c : sk::comparePasses(sk::readImage(a), sk::readImage(b))) {
+            py::dict row;
+            row["pass"] = c.pass, row["rms"] = c.rms, row["max"] = c.maxError, row["pixels"] = c.pixels;
+            out.append(row);
+        }
+        return out;
+    }, py::arg("a"), py::arg("b"),
+    "[{'pass', 'rms', 'max', 'pixels'}] for the passes two image files both have: alpha, each channel, each Cryptomatte name's matte");
     m.def("cryptomatte_matte", [](const std::string& path, const std::string& type, const std::string& name) {
         const sk::Image image = sk::readImage(path);
         const std::vector<float> matte = sk::cryptomatteMatte(image, type, name);

@@ -39,11 +39,19 @@ glm::vec3 lightPhong(const Scene& scene, const Material& material, const glm::ve
     return albedo * terms.diffuse + terms.specular;
 }
 
+glm::vec3 shadingNormal(const SurfacePoint& point) {
+    const float length = glm::length(point.normal);
+    if (!(length > 0.0f)) return glm::vec3(0.0f);
+    return (point.isFrontFacing ? 1.0f : -1.0f) * point.normal / length;
+}
+
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye) {
     const Material& material = scene.materials[point.material];
     ShadedColor result = materialAlbedo(scene, point.material, point.uv, {point.duvdx, point.duvdy}, point.vertexColor);
     if (mode == ShadingMode::Phong)
         result.color = lightPhong(scene, material, result.color, point.position, point.normal, point.isFrontFacing, eye);
+    else if (mode == ShadingMode::Normal)
+        result.color = shadingNormal(point);
     return result;
 }
 

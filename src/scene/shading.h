@@ -11,8 +11,9 @@
 namespace streak {
 
 enum class ShadingMode : std::uint8_t {
-    Unlit,  ///< base colour times texture: the time-averaged albedo
-    Phong,  ///< one directional light plus ambient, as in the papers
+    Unlit,   ///< base colour times texture: the time-averaged albedo
+    Phong,   ///< one directional light plus ambient, as in the papers
+    Normal,  ///< the unit world-space normal as the colour (the normal pass), with Unlit's alpha
 };
 
 // SurfacePoint is what a renderer knows about a visible point at one time: enough to shade it.
@@ -31,6 +32,10 @@ struct ShadedColor {
     glm::vec3 color{0.0f};  ///< linear, not premultiplied
     float alpha = 1.0f;     ///< Material::alphaOf(texture alpha times vertex alpha): 1 when opaque
 };
+
+// The unit normal a point is shaded with, turned towards the viewer on a back face (as Phong
+// lights it); 0 for a degenerate normal. The normal pass's value.
+glm::vec3 shadingNormal(const SurfacePoint& point);
 
 // The one shading function every CPU method calls, so methods differ only in visibility.
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);

@@ -239,7 +239,7 @@ TEST(Cli, PassesGoToTheExrAndStitchWithTheRegions) {
     const Image whole = readImage(dir.file("whole.exr"));
     std::vector<std::string> names;
     for (const ImageChannel& c : whole.channels()) names.push_back(c.name);
-    for (const char* name : {"Z", "Z.min", "CryptoObject00.R", "CryptoObject02.A", "CryptoMaterial00.G", "CryptoMaterial02.B"})
+    for (const char* name : {"Z", "Z.min", "CryptoObject00.r", "CryptoObject02.a", "CryptoMaterial00.g", "CryptoMaterial02.b"})
         EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
     EXPECT_EQ(names.size(), 2u + 2u * 12u);
     int metadata = 0;
@@ -255,12 +255,33 @@ TEST(Cli, PassesGoToTheExrAndStitchWithTheRegions) {
     for (std::size_t i = 0; i < whole.alpha().size(); ++i) {
         float sum = 0.0f;
         for (const char* layer : {"CryptoObject00", "CryptoObject01", "CryptoObject02"})
-            sum += values(whole, std::string(layer) + ".G")[i] + values(whole, std::string(layer) + ".A")[i];
+            sum += values(whole, std::string(layer) + ".g")[i] + values(whole, std::string(layer) + ".a")[i];
         worst = std::max(worst, double(std::abs(sum - whole.alpha()[i])));
     }
     EXPECT_LT(worst, 1e-5);
     renderAndStitchRegions(dir, base, {"0,0,40,72", "40,0,96,72"});
     EXPECT_EQ(readFile(dir.file("stitched.exr")), readFile(dir.file("whole.exr")));
+
+    // compare goes on pass by pass: nothing between a file and itself; against embree's sampled
+    // passes, alpha, depth and each object's matte, each within the sampling's error.
+    const RunResult same = runStreak(dir, "compare " + dir.file("whole.exr") + " " + dir.file("stitched.exr"));
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    EXPECT_NE(same.out.find("alpha: RMS 0.000000, max 0.000000"), std::string::npos) << same.out;
+    EXPECT_NE(same.out.find("Z: RMS 0.000000"), std::string::npos) << same.out;
+    const std::string sampled = "render builtin:translucent -m embree --samples 32 --width 96 --height 72 --aa 2 --transparent --passes depth,object_id,material_id ";
+    ASSERT_EQ(runStreak(dir, sampled + "-o " + dir.file("embree.exr")).exitCode, 0);
+    const RunResult versus = runStreak(dir, "compare " + dir.file("whole.exr") + " " + dir.file("embree.exr"));
+    ASSERT_EQ(versus.exitCode, 0) << versus.err;
+    int mattes = 0;
+    std::istringstream lines(versus.out);
+    for (std::string line; std::getline(lines, line);) {
+        const std::size_t rms = line.find(": RMS ");
+        if (rms == std::string::npos) continue;
+        const std::string pass = line.substr(0, rms);
+        mattes += pass.rfind("CryptoObject ", 0) == 0;
+        if (pass == "alpha" || pass.rfind("Crypto", 0) == 0) EXPECT_LT(std::stod(line.substr(rms + 6)), 0.03) << line;
+    }
+    EXPECT_GE(mattes, 2) << versus.out;
 }
 
 // --repeat renders again with the same renderer: the same image, and the stats of the last

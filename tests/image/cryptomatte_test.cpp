@@ -29,11 +29,11 @@ TEST(Cryptomatte, IdsAndKeysAreTheSpecificationsExamples) {
 }
 
 TEST(Cryptomatte, ChannelsFollowTheLayerNaming) {
-    EXPECT_EQ(cryptomatteChannel("CryptoObject", 0, false), "CryptoObject00.R");
-    EXPECT_EQ(cryptomatteChannel("CryptoObject", 0, true), "CryptoObject00.G");
-    EXPECT_EQ(cryptomatteChannel("CryptoObject", 1, false), "CryptoObject00.B");
-    EXPECT_EQ(cryptomatteChannel("CryptoObject", 1, true), "CryptoObject00.A");
-    EXPECT_EQ(cryptomatteChannel("CryptoMaterial", 5, true), "CryptoMaterial02.A");
+    EXPECT_EQ(cryptomatteChannel("CryptoObject", 0, false), "CryptoObject00.r");
+    EXPECT_EQ(cryptomatteChannel("CryptoObject", 0, true), "CryptoObject00.g");
+    EXPECT_EQ(cryptomatteChannel("CryptoObject", 1, false), "CryptoObject00.b");
+    EXPECT_EQ(cryptomatteChannel("CryptoObject", 1, true), "CryptoObject00.a");
+    EXPECT_EQ(cryptomatteChannel("CryptoMaterial", 5, true), "CryptoMaterial02.a");
     EXPECT_EQ(cryptomatteLayers(6), 3);
     EXPECT_EQ(cryptomatteLayers(3), 2);
     EXPECT_EQ(cryptomatteKey("CryptoObject").size(), 7u);

@@ -143,7 +143,7 @@ TEST(ImageIo, PngGreyAndAlphaInputs) {
 TEST(ImageIo, ExrKeepsPassChannelsAndCryptomatteMetadataAndRegionsCropThem) {
     Image image(3, 2, glm::vec3(0.5f));
     image.addChannel("Z", {1, 2, 3, 4, 5, 6});
-    image.addChannel("CryptoObject00.R", {0.25f, 0, 0, 0, 0, -7.5f});
+    image.addChannel("CryptoObject00.r", {0.25f, 0, 0, 0, 0, -7.5f});
     image.setMetadata("cryptomatte/abcdef0/manifest", R"({"a":"3e800000"})");
     TempDir dir;
     writeImage(image, dir.file("passes.exr"));

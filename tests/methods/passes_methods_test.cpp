@@ -67,7 +67,7 @@ void expectPasses(const std::string& method, const OptionMap& options, float cov
     RenderStats stats;
     RenderContext context{stats};
     const Image image = renderer->render(sweptWall(), settings, context);
-    for (const char* name : {"Z", "Z.min", "CryptoObject00.R", "CryptoObject00.A", "CryptoObject01.R", "CryptoObject01.A", "CryptoMaterial01.G"})
+    for (const char* name : {"Z", "Z.min", "CryptoObject00.r", "CryptoObject00.a", "CryptoObject01.r", "CryptoObject01.a", "CryptoMaterial01.g"})
         EXPECT_EQ(channel(image, name).values.size(), std::size_t(kWidth * kHeight)) << name;
     EXPECT_EQ(image.metadata().at("cryptomatte/" + cryptomatteKey("CryptoObject") + "/name"), "CryptoObject");
     for (int py = 0; py < kHeight; ++py)
@@ -80,10 +80,10 @@ void expectPasses(const std::string& method, const OptionMap& options, float cov
             EXPECT_NEAR(coverageOf(image, "CryptoMaterial", "white", 3, i), e.sweeper, coverageTolerance);
             EXPECT_NEAR(coverageOf(image, "CryptoMaterial", "grey", 3, i), e.wall, coverageTolerance);
             // The coverages sum to alpha; rank 0 holds the larger; the unused rank is empty.
-            const float rank0 = channel(image, "CryptoObject00.G").values[i], rank1 = channel(image, "CryptoObject00.A").values[i];
+            const float rank0 = channel(image, "CryptoObject00.g").values[i], rank1 = channel(image, "CryptoObject00.a").values[i];
             EXPECT_NEAR(rank0 + rank1, image.alphaAt(px, py), 1e-5f);
             EXPECT_GE(rank0, rank1);
-            EXPECT_EQ(channel(image, "CryptoObject01.G").values[i], 0.0f);
+            EXPECT_EQ(channel(image, "CryptoObject01.g").values[i], 0.0f);
             // Depth: the coverage-weighted mean of 2 and 3, and the nearest; 1e10 where nothing shows.
             const float covered = e.sweeper + e.wall;
             const float z = channel(image, "Z").values[i], zMin = channel(image, "Z.min").values[i];
@@ -100,6 +100,29 @@ void expectPasses(const std::string& method, const OptionMap& options, float cov
 
 TEST(PassesMethods, ExactMethodsWriteExactCoveragesAndDepth) {
     for (const char* method : {"motion-path", "analytic", "higher-order"}) expectPasses(method, OptionMap(), 1e-5f, 1e-4f);
+}
+
+TEST(PassesMethods, DepthIsTheMeanOverTheShutterAndTheNearestItGets) {
+    // A quad filling the image recedes from depth 2 to 4 over the shutter: view depth is linear
+    // in time, so Z is 3 and Z.min 2 at every pixel.
+    Scene scene = test::emptyScene();
+    const test::PixelCamera near{kWidth, kHeight, 2.0f}, far{kWidth, kHeight, 4.0f};
+    test::addMovingQuad(scene, test::addMaterial(scene, glm::vec3(1.0f)),
+                        {near.at(-8, -8), near.at(-8, 12), near.at(24, 12), near.at(24, -8)}, {far.at(-8, -8), far.at(-8, 12), far.at(24, 12), far.at(24, -8)});
+    validateScene(scene);
+    for (const char* method : {"motion-path", "analytic", "higher-order"}) {
+        std::unique_ptr<Renderer> renderer = createRenderer(method, OptionMap());
+        RenderSettings settings;
+        settings.width = kWidth, settings.height = kHeight, settings.aa = 2;
+        settings.passes.depth = true;
+        RenderStats stats;
+        RenderContext context{stats};
+        const Image image = renderer->render(scene, settings, context);
+        for (std::size_t i = 0; i < std::size_t(kWidth * kHeight); ++i) {
+            EXPECT_NEAR(channel(image, "Z").values[i], 3.0f, 1e-4f) << method << " pixel " << i;
+            EXPECT_NEAR(channel(image, "Z.min").values[i], 2.0f, 1e-4f) << method << " pixel " << i;
+        }
+    }
 }
 
 TEST(PassesMethods, EmbreeWritesItsSampledEstimate) {

@@ -79,12 +79,17 @@ class RenderTest(unittest.TestCase):
         # gives the same matte by the object's name through cryptomatte_matte.
         keys, indices, camera = sweeping_quad()
         scene = streak.Scene.from_arrays(keys, indices, camera=camera)
-        layers = streak.render(scene, method="analytic", width=16, height=4, unlit=True, passes=["depth", "object_id"])
+        layers = streak.render(scene, method="analytic", width=16, height=4, unlit=True, passes=["depth", "object_id", "normal"])
         coverage = np.clip((14 - (np.arange(16) + 0.5)) / 12, 0, 1)
         self.assertEqual(layers["image"].shape, (4, 16, 3))
-        for row in layers["CryptoObject00.G"]:
+        for row in layers["CryptoObject00.g"]:
             np.testing.assert_allclose(row, coverage, atol=1e-5)
         np.testing.assert_allclose(layers["Z"][:, :13], 3.0, rtol=1e-5)
+        # The quad faces the camera (+z): its normal pass is (0, 0, coverage).
+        for row in layers["normal.Z"]:
+            np.testing.assert_allclose(row, coverage, atol=1e-5)
+        np.testing.assert_allclose(layers["normal.X"], 0.0, atol=1e-5)
+        np.testing.assert_allclose(layers["normal.Y"], 0.0, atol=1e-5)
         self.assertTrue(np.all(layers["Z"][:, 14:] == 1e10))
         self.assertTrue(any(k.endswith("/manifest") for k in layers["metadata"]))
         with tempfile.TemporaryDirectory() as tmp:
@@ -99,6 +104,9 @@ class RenderTest(unittest.TestCase):
             np.testing.assert_allclose(total, rendered[..., 3], atol=1e-5)
             with self.assertRaises(streak.Error):
                 streak.cryptomatte_matte(path, "CryptoAsset", names[0])
+            rows = {r["pass"]: r for r in streak.compare_passes(path, path)}
+            self.assertTrue(all(r["rms"] == 0 for r in rows.values()))
+            self.assertTrue(all(f"CryptoObject {n}" in rows for n in names))
 
     @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
     def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):

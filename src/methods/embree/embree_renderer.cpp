@@ -295,7 +295,7 @@ private:
             const ShadedColor shaded = shadeSurface(scene, shading, point, ray.origin);
             const bool isOpaque = !scene.materials[tri.material].isTranslucent();
             if (passes && (isOpaque || layers < m_options.maxLayers))
-                passes->add(tri.mesh, tri.material, transmittance * (isOpaque ? 1.0f : shaded.alpha), hit.ray.tfar);
+                passes->add(tri.mesh, tri.material, transmittance * (isOpaque ? 1.0f : shaded.alpha), hit.ray.tfar, hit.ray.tfar);
             if (isOpaque) return glm::vec4(color + transmittance * shaded.color, 1.0f);
             if (layers == m_options.maxLayers) {
                 isOverflow = true;  // past the budget: further translucent layers are left out

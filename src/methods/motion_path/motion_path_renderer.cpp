@@ -250,13 +250,17 @@ private:
     };
 
     // Adds to the pixel's passes what shows in sample i (its sorted intervals begin to end):
-    // with exact opaque weights, each span where an interval is the nearest, at its depth in the
-    // span's middle; else each interval with a share, at its depth in its middle.
+    // with exact opaque weights, each span where an interval is the nearest; else each interval
+    // with a share. Each at its depth in the middle, and the nearest its polyline gets in it (its
+    // ends and the corners between).
     static void addShownSurfaces(const Frame& frame, TileScratch& scratch, std::uint32_t begin, std::uint32_t end, std::size_t i,
                                  bool hasVisibleSpans) {
         auto add = [&](const Interval& interval, float share, float t0, float t1) {
             const FlatTriangle& t = frame.geometry.triangles()[frame.paths[interval.source].triangle];
-            scratch.passes.add(t.mesh, t.material, share, motion_path::depthAt(interval, scratch.knots, 0.5f * (t0 + t1)));
+            float nearest = std::min(motion_path::depthAt(interval, scratch.knots, t0), motion_path::depthAt(interval, scratch.knots, t1));
+            for (std::uint32_t k = interval.firstKnot; k < interval.firstKnot + interval.numKnots; ++k)
+                if (scratch.knots[k].t > t0 && scratch.knots[k].t < t1) nearest = std::min(nearest, scratch.knots[k].depth);
+            scratch.passes.add(t.mesh, t.material, share, motion_path::depthAt(interval, scratch.knots, 0.5f * (t0 + t1)), nearest);
         };
         if (hasVisibleSpans) {
             for (std::uint32_t v = scratch.visibleRuns[i]; v < scratch.visibleRuns[i + 1]; ++v) {
