@@ -65,7 +65,7 @@ struct RenderSettings {
     // (sampled), refused by the others. "albedo" (albedo.R/G/B: the unlit colour of what shows,
     // premultiplied as the colour): every method, by one more render shaded unlit. "normal"
     // (normal.X/Y/Z: the world-space unit normal of what shows, averaged and premultiplied
-    // likewise): the CPU methods, by one more render.
+    // likewise): every method, by one more render.
     std::vector<std::string> passes;
     int cryptomatteRanks = 6;
     bool sampleGrid = false;

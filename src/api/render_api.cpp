@@ -148,8 +148,6 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
         throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
     s.passes.cryptoRanks = settings.cryptomatteRanks;
-    if (m_impl->normal && !m_impl->method->shadesNormals())
-        throw Error("method " + settings.method + " does not write the normal pass: the CPU methods do");
     if (s.passes.any() && !m_impl->method->writesPasses())
         throw Error("method " + settings.method + " does not write the depth and Cryptomatte passes (" +
                     std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : "material_id") +

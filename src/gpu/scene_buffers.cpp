@@ -107,7 +107,8 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
     block.ambient = glm::vec4(scene.light.ambient, 0.0f);
     block.background = glm::vec4(scene.background, 1.0f);
     block.viewport = glm::ivec4(width * aa, height * aa, width, height);
-    block.flags = glm::ivec4(shading == ShadingMode::Phong ? 1 : 0, aa, isGridPattern ? 1 : 0, 0);
+    // x: 0 unlit, 1 Phong, 2 the normal pass (shading.glsl's isLit, isNormalPass).
+    block.flags = glm::ivec4(shading == ShadingMode::Phong ? 1 : shading == ShadingMode::Normal ? 2 : 0, aa, isGridPattern ? 1 : 0, 0);
     const Shutter& shutter = scene.shutter;
     const std::vector<glm::vec2>& points = shutter.curve.points();
     block.shutter = glm::vec4(shutter.rollingDuration, float(points.size()), shutter.isBox() ? 1.0f : 0.0f, shutter.curve.isBox() ? 1.0f : 0.0f);

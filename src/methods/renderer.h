@@ -69,10 +69,6 @@ public:
     // Whether the method writes the passes of RenderSettings::passes (depth, Cryptomatte).
     virtual bool writesPasses() const { return false; }
 
-    // Whether the method shades with ShadingMode::Normal (the normal pass): the CPU methods,
-    // which all shade through scene/shading and exposure/span_shading.
-    virtual bool shadesNormals() const { return true; }
-
     // The trail the method needs loaded instead of the shutter (blur-shell); none by default.
     virtual std::optional<AnimationTrail> animationTrail() const { return std::nullopt; }
 };

@@ -13,7 +13,7 @@ namespace streak {
 enum class ShadingMode : std::uint8_t {
     Unlit,   ///< base colour times texture: the time-averaged albedo
     Phong,   ///< one directional light plus ambient, as in the papers
-    Normal,  ///< the unit world-space normal as the colour (the normal pass), with Unlit's alpha
+    Normal,  ///< the unit world-space normal as the colour (the normal pass), with Unlit's alpha; GL: shading.glsl's isNormalPass
 };
 
 // SurfacePoint is what a renderer knows about a visible point at one time: enough to shade it.

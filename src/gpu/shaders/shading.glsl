@@ -118,14 +118,25 @@ PhongTerms phongTerms(uint m, vec3 position, vec3 normal, bool isFrontFacing, ve
     return terms;
 }
 
-bool isLit() { return u_flags.x != 0; }
+bool isLit() { return u_flags.x == 1; }
+bool isNormalPass() { return u_flags.x == 2; }  // ShadingMode::Normal
 
-// shadeSurface: the colour and alpha of a point at one instant, seen from `eye`.
+// shadingNormal: the unit normal a point is shaded with, towards the viewer on a back face.
+vec3 shadingNormal(vec3 normal, bool isFrontFacing) {
+    float len = length(normal);
+    if (!(len > 0.0)) return vec3(0.0);
+    return (isFrontFacing ? 1.0 : -1.0) * normal / len;
+}
+
+// shadeSurface: the colour and alpha of a point at one instant, seen from `eye` (the normal pass:
+// its normal, with the albedo's alpha).
 vec4 shadeSurface(SurfacePoint p, vec3 eye) {
     vec4 result = materialAlbedo(p.material, p.uv, p.duvdx, p.duvdy, p.vertexColor);
     if (isLit()) {
         PhongTerms terms = phongTerms(p.material, p.position, p.normal, p.isFrontFacing, eye);
         result.rgb = result.rgb * terms.diffuse + terms.specular;
+    } else if (isNormalPass()) {
+        result.rgb = shadingNormal(p.normal, p.isFrontFacing);
     }
     return result;
 }

@@ -20,8 +20,6 @@ class AccumulationGlRenderer final : public Renderer {
 public:
     explicit AccumulationGlRenderer(const Options& options) : m_options(options) {}
 
-    bool shadesNormals() const override { return false; }  // the GL shaders know Phong and unlit only
-
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         // Hardware rasterization puts the samples at the texel centres of the sample grid: the
         // regular grid, whatever settings.isGridPattern says (counted below).

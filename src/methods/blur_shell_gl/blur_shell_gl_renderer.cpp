@@ -16,8 +16,6 @@ public:
     BlurShellGlRenderer(const BlurShellOptions& options, bool isSorted, const gpu::TranslucentOptions& translucent)
         : m_options(options), m_isSorted(isSorted), m_translucent(translucent) {}
 
-    bool shadesNormals() const override { return false; }  // the GL shaders know Phong and unlit only
-
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const ShellScene shellScene = buildShellScene(scene, m_options, context.stats);
         // Hardware rasterization puts the samples at the texel centres of the sample grid.

@@ -46,8 +46,6 @@ class MotionPathGlRenderer final : public Renderer {
 public:
     explicit MotionPathGlRenderer(const Options& options) : m_options(options) {}
 
-    bool shadesNormals() const override { return false; }  // the GL shaders know Phong and unlit only
-
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         gpu::GlContext& gl = gpu::sharedContext();
         const FlatGeometry geometry(scene);

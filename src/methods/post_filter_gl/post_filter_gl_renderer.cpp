@@ -24,8 +24,6 @@ public:
     PostFilterGlRenderer(const exposure::ReconstructionOptions& options, const gpu::TranslucentOptions& translucent)
         : m_options(options), m_translucent(translucent) {}
 
-    bool shadesNormals() const override { return false; }  // the GL shaders know Phong and unlit only
-
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         // Hardware rasterization puts the samples at the texel centres of the sample grid.
         const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, /*isGridPattern=*/true, settings.shading, context.stats);

@@ -55,8 +55,6 @@ class StochasticGlRenderer final : public Renderer {
 public:
     explicit StochasticGlRenderer(const Options& options) : m_options(options) {}
 
-    bool shadesNormals() const override { return false; }  // the GL shaders know Phong and unlit only
-
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const gpu::GpuFrame frame(scene, settings.width, settings.height, settings.aa, settings.isGridPattern, settings.shading, context.stats);
         const gpu::SampleGrid& grid = frame.grid;

@@ -116,6 +116,9 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
         if (!surfaceAt(point, times[i], true, ends[i])) return vec4(0.0);
     uint m = ends[1].material;
     bool lit = isLit();
+    // The normal pass: the span's mean normal (Simpson's weights), with the unlit path's alpha.
+    vec3 meanNormal = (shadingNormal(ends[0].normal, ends[0].isFrontFacing) + 4.0 * shadingNormal(ends[1].normal, ends[1].isFrontFacing) +
+                       shadingNormal(ends[2].normal, ends[2].isFrontFacing)) / 6.0;
 
     // Lighting: Simpson's three points, or n midpoint taps where the surface turns.
     int lightingTaps = 0;
@@ -151,6 +154,7 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     MaterialData mat = materials[m];
     if (mat.info.x < 0) {
         vec4 albedo = materialAlbedo(m, ends[1].uv, vec2(0.0), vec2(0.0), vertexColor);
+        if (isNormalPass()) return vec4(meanNormal, albedo.a);
         if (!lit) return albedo;
         return vec4(albedo.rgb * meanDiffuse + meanSpecular, albedo.a);
     }
@@ -222,5 +226,6 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     }
     if (used == 0) return vec4(0.0);
     float scale = 1.0 / float(used);
+    if (isNormalPass()) return vec4(meanNormal, alphaSum * scale);
     return vec4(mat.baseColorOpacity.rgb * vertexColor.rgb * sum * scale + specularSum * scale, alphaSum * scale);
 }
