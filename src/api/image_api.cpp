@@ -71,7 +71,7 @@ Image stitch(const std::vector<Image>& regions) {
     }
     const std::uint64_t frameArea = std::uint64_t(width) * std::uint64_t(height);
     streak::Image frame(width, height);
-    if (regions.front().hasAlpha()) frame.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
+    if (regions.front().hasAlpha()) frame.setUncovered();
     std::vector<std::vector<float>> passes(regions.front().channels.size());
     std::vector<int> owner(area == frameArea ? frameArea : 0, -1);
     for (std::size_t k = 0; k < in.size() && area == frameArea; ++k) {

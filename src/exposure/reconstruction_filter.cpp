@@ -85,9 +85,7 @@ Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& optio
     const int tw = (frame.width + options.tile - 1) / options.tile, th = (frame.height + options.tile - 1) / options.tile;
     const std::vector<glm::vec2> neighbors = neighborMax(tileMax(frame, options.tile), tw, th);
     Image image(frame.width, frame.height);
-    const bool hasCoverage = !frame.coverage.empty();
-    std::vector<float> coverage(hasCoverage ? frame.coverage.size() : 0);
-    auto coverageAt = [&](std::size_t i) { return hasCoverage ? frame.coverage[i] : 0.0f; };
+    std::vector<float> coverage(frame.coverage.size());
     const int taps = options.samples;
     auto depthAt = [&](std::size_t i) { return std::isfinite(frame.depth[i]) ? frame.depth[i] : kBackgroundDepth; };
     tbb::parallel_for(tbb::blocked_range<int>(0, frame.height, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -97,13 +95,13 @@ Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& optio
                 const glm::vec2 vn = neighbors[std::size_t(y / options.tile) * std::size_t(tw) + std::size_t(x / options.tile)];
                 if (glm::length(vn) <= 0.5f) {
                     image.at(x, y) = frame.color[cx];
-                    if (hasCoverage) coverage[cx] = frame.coverage[cx];
+                    coverage[cx] = frame.coverage[cx];
                     continue;
                 }
                 const float speedX = glm::length(frame.velocity[cx]), zx = depthAt(cx);
                 float weight = 1.0f / std::max(speedX, 0.5f);
                 glm::vec3 sum = frame.color[cx] * weight;
-                float coverageSum = coverageAt(cx) * weight;
+                float coverageSum = frame.coverage[cx] * weight;
                 // Guertin et al.: a per-pixel jitter of the taps along the line, so the steps
                 // between taps become noise instead of ghost copies.
                 const float jitter = gatherJitter(options.seed, cx);
@@ -121,10 +119,10 @@ Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& optio
                                         2.0f * cylinder(distance, speedY) * cylinder(distance, speedX);
                     weight += alpha;
                     sum += alpha * frame.color[cy];
-                    coverageSum += alpha * coverageAt(cy);
+                    coverageSum += alpha * frame.coverage[cy];
                 }
                 image.at(x, y) = sum / weight;
-                if (hasCoverage) coverage[cx] = coverageSum / weight;
+                coverage[cx] = coverageSum / weight;
             }
     });
     image.setAlpha(std::move(coverage));

@@ -18,7 +18,7 @@ struct VelocityFrame {
     int width = 0;
     int height = 0;
     std::vector<glm::vec3> color;
-    std::vector<float> coverage;     ///< alpha: filtered as the colour is; none (empty): no alpha out
+    std::vector<float> coverage;     ///< alpha, filtered as the colour is
     std::vector<float> depth;        ///< view depth; infinity where the background shows
     std::vector<glm::vec2> velocity;
 
@@ -56,7 +56,7 @@ void clampVelocities(VelocityFrame& frame, const ReconstructionOptions& options)
 std::vector<glm::vec2> tileMax(const VelocityFrame& frame, int tile);
 std::vector<glm::vec2> neighborMax(const std::vector<glm::vec2>& tiles, int tilesWide, int tilesHigh);
 
-// The filtered image (with alpha, the filtered coverage, when the frame has coverage).
+// The filtered image, its alpha the filtered coverage.
 Image reconstruct(const VelocityFrame& frame, const ReconstructionOptions& options);
 
 }  // namespace streak::exposure

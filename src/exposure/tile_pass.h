@@ -41,7 +41,7 @@ Image runTilePass(raster::TileGrid& grid, std::span<const raster::PixelBounds> b
     }
     budget.measure();
     Image image(width, height, background);
-    image.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
+    image.setUncovered();
     {
         PhaseTimer timer(stats, "tiles");
         PartsProgress tiles(progress, std::size_t(grid.numActiveTiles()));

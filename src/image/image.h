@@ -57,6 +57,8 @@ public:
     float alphaAt(int x, int y) const { return m_alpha.empty() ? 1.0f : m_alpha[std::size_t(y) * m_width + x]; }
     // Throws Error unless there is one value per pixel; an empty vector removes the alpha.
     void setAlpha(std::vector<float> alpha);
+    // Alpha 0 everywhere: nothing covered yet (a renderer's start).
+    void setUncovered() { m_alpha.assign(m_pixels.size(), 0.0f); }
 
     // Passes: named channels (one value per pixel) and the string attributes that describe them
     // (Cryptomatte's manifests), written to EXR beside R G B (A); PNG leaves them out.

@@ -34,7 +34,7 @@ public:
         exposure::InstantDraw draw{settings.shading};
         if (!m_isSorted) draw.firstInOrderMesh = std::uint32_t(shellScene.firstShellMesh);
         Image image(settings.width, settings.height);
-        image.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
+        image.setUncovered();
         tbb::enumerable_thread_specific<exposure::InstantScratch> scratch;
         std::atomic<std::int64_t> fragments{0};
         grid.forEachTile([&](int tile) {

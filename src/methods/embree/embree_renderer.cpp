@@ -114,7 +114,7 @@ public:
         const float aspect = float(width) / float(height), tanHalf = std::tan(scene.camera.verticalFov * 0.5f);
         const double spacing = double(pattern.footprintStep()) / double(raster::kSubpixelScale);
         Image image(width, height);
-        image.setAlpha(std::vector<float>(std::size_t(width) * std::size_t(height), 0.0f));
+        image.setUncovered();
         std::optional<exposure::PassFrame> passFrame;
         if (settings.passes.any()) passFrame.emplace(scene, settings.passes, width, height);
         std::atomic<std::int64_t> rays{0}, overflowSamples{0};

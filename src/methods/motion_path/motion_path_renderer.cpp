@@ -128,7 +128,7 @@ public:
             grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
         }
         Image image(settings.width, settings.height, scene.background);
-        image.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
+        image.setUncovered();
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         budget.measure();

@@ -53,7 +53,7 @@ public:
         const Frame frame(scene, settings);
         raster::TileGrid grid(frame.viewport, kTileSize, settings.region);
         Image sum(settings.width, settings.height);
-        sum.setAlpha(std::vector<float>(std::size_t(settings.width) * std::size_t(settings.height), 0.0f));
+        sum.setUncovered();
         std::vector<raster::PixelBounds> bounds(frame.geometry.triangles().size());
         tbb::enumerable_thread_specific<TileScratch> scratch;
         std::atomic<std::int64_t> tests{0};
