@@ -12,9 +12,10 @@ packages=(
   clang libclang-rt-14-dev
   python3-matplotlib python3-dev python3-pybind11 python3-numpy
   parallel
+  blender
 )
-# --bench: Blender too, for the Cycles ground truth of bench/cycles_reference.py (not for CI).
-if [ "${1:-}" = "--bench" ]; then packages+=(blender); fi
+# Blender (Debian's, Python 3.11 as the streak module's) runs the add-on's tests
+# (tests/blender) and the Cycles ground truth of bench/cycles_reference.py.
 
 missing=()
 for p in "${packages[@]}"; do

@@ -22,4 +22,11 @@ public:
     explicit RenderFailure(const std::string& message) : Error(message) {}
 };
 
+// Cancelled is thrown by a render whose cancel callback said stop (api::Renderer::render): no
+// image is made. A client that asked for it (Blender's Esc) need not report it as a failure.
+class Cancelled : public Error {
+public:
+    explicit Cancelled(const std::string& message = "the render was cancelled") : Error(message) {}
+};
+
 }  // namespace streak

@@ -104,8 +104,11 @@ public:
     // it with LoadOptions::trail. Empty for the shutter-average methods.
     std::optional<Trail> trail() const;
 
-    // progress, if given, is called with the share done, from 0 to 1.
-    RenderResult render(const Scene& scene, const std::function<void(double)>& progress = {});
+    // progress, if given, is called with the share done, from 0 to 1. cancel, if given, is asked
+    // before the render and with every progress step (each tile of the exact methods, each
+    // instant, each row of rays), on the thread that called render(); once it returns true the
+    // render stops and throws Cancelled.
+    RenderResult render(const Scene& scene, const std::function<void(double)>& progress = {}, const std::function<bool()>& cancel = {});
 
 private:
     struct Impl;

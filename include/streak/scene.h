@@ -48,6 +48,7 @@ struct Material {
     bool doubleSided = false;
     float specular = 0.2f;
     float shininess = 32.0f;
+    std::string name;  ///< the Cryptomatte material name; empty: "material I"
 };
 
 // A triangle mesh moving over the shutter as `keys` key poses (keys >= 2, evenly spaced in
@@ -61,6 +62,7 @@ struct Mesh {
     std::vector<float> uvs;
     std::vector<std::uint32_t> indices;
     int material = 0;  ///< index into the scene's materials
+    std::string name;  ///< the Cryptomatte object name; empty: "mesh I"
 };
 
 // How the shutter is exposed (README, "The shutter"): the curve's name (box, triangle,

@@ -35,13 +35,22 @@ void reportCamera(const streak::Camera& camera, RenderStats& stats) {
     stats.setInfo("camera_znear", numberList({camera.zNear}));
 }
 
+// The caller's progress and cancel callbacks. A cancel is thrown from the reporting thread (the
+// caller's), which unwinds the method's parallel loops as any exception does.
 class CallbackProgress final : public ProgressReporter {
 public:
-    explicit CallbackProgress(const std::function<void(double)>& callback) : m_callback(callback) {}
-    void update(double fraction) override { m_callback(fraction); }
+    CallbackProgress(const std::function<void(double)>& progress, const std::function<bool()>& cancel) : m_progress(progress), m_cancel(cancel) {}
+    void update(double fraction) override {
+        checkCancel();
+        if (m_progress) m_progress(fraction);
+    }
+    void checkCancel() const {
+        if (m_cancel && m_cancel()) throw Cancelled();
+    }
 
 private:
-    const std::function<void(double)>& m_callback;
+    const std::function<void(double)>& m_progress;
+    const std::function<bool()>& m_cancel;
 };
 
 Stats statsOf(const RenderStats& in) {
@@ -164,7 +173,7 @@ std::optional<Trail> Renderer::trail() const {
     return Trail{trail->lengthSeconds, trail->keys};
 }
 
-RenderResult Renderer::render(const Scene& scene, const std::function<void(double)>& progress) {
+RenderResult Renderer::render(const Scene& scene, const std::function<void(double)>& progress, const std::function<bool()>& cancel) {
     const Scene::Impl& in = scene.impl();
     const RenderSettings& settings = m_impl->settings;
     if (const std::optional<Trail> trail = this->trail(); trail && !in.canShowTrail(*trail))
@@ -195,8 +204,9 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
 
     std::optional<tbb::global_control> threadLimit;
     if (settings.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(settings.threads));
-    CallbackProgress reporter(progress);
-    RenderContext context{stats, progress ? &reporter : nullptr};
+    CallbackProgress reporter(progress, cancel);
+    reporter.checkCancel();
+    RenderContext context{stats, progress || cancel ? &reporter : nullptr};
     RenderResult result;
     {
         PhaseTimer timer(stats, "render");
@@ -204,6 +214,7 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
         if (!settings.transparent) image.setAlpha({});
         else if (!image.hasAlpha()) throw RenderFailure("method " + settings.method + " gave no coverage for a transparent background");
         else image = withTransparentBackground(std::move(image), in.scene.background);
+        if (m_impl->albedo || m_impl->normal) reporter.checkCancel();
         if (m_impl->albedo)
             addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Unlit, "albedo", {"R", "G", "B"}, settings.method, in.scene, image, stats);
         if (m_impl->normal)

@@ -51,7 +51,7 @@ streak::Mesh meshOf(const Mesh& in, std::size_t index, std::size_t numMaterials)
     if (in.material < 0 || std::size_t(in.material) >= numMaterials)
         throw Error(where + ": material " + std::to_string(in.material) + " does not exist");
     streak::Mesh mesh;
-    mesh.name = where;
+    mesh.name = in.name.empty() ? where : in.name;
     mesh.numKeys = in.keys;
     mesh.material = std::uint32_t(in.material);
     for (std::size_t i = 0; i < in.positions.size(); i += 3) mesh.positions.emplace_back(in.positions[i], in.positions[i + 1], in.positions[i + 2]);
@@ -202,6 +202,7 @@ Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Mater
         m.doubleSided = in.doubleSided;
         m.specular = in.specular;
         m.shininess = in.shininess;
+        m.name = in.name.empty() ? "material " + std::to_string(i) : in.name;
         scene.materials.push_back(m);
     }
     for (std::size_t i = 0; i < meshes.size(); ++i) scene.meshes.push_back(meshOf(meshes[i], i, materials.size()));

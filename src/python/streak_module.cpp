@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -101,10 +102,9 @@ sk::Camera cameraOf(const py::dict& camera) {
     return c;
 }
 
-sk::Scene fromArrays(const py::handle& keys, const py::handle& indices, const py::object& uvs, const py::object& normals,
-                     const py::object& texture, const py::dict& camera, const py::object& baseColor, bool doubleSided,
-                     const py::object& background) {
-    const FloatArray k = floats(keys, "keys", 3, 3, "(K, V, 3): K key poses of V vertices");
+// One mesh from its arrays; `where` prefixes the errors ("" for from_arrays' one mesh).
+sk::Mesh meshOf(const py::handle& keys, const py::handle& indices, const py::object& uvs, const py::object& normals, const std::string& where) {
+    const FloatArray k = floats(keys, (where + "keys").c_str(), 3, 3, "(K, V, 3): K key poses of V vertices");
     sk::Mesh mesh;
     mesh.keys = int(k.shape(0));
     mesh.positions = flat(k);
@@ -113,48 +113,115 @@ sk::Scene fromArrays(const py::handle& keys, const py::handle& indices, const py
         tri = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(indices);
     } catch (const py::error_already_set&) {
     }
-    if (!tri || tri.ndim() != 2 || tri.shape(1) != 3) throw streak::Error("indices must be an integer array of shape (T, 3)");
+    if (!tri || tri.ndim() != 2 || tri.shape(1) != 3) throw streak::Error(where + "indices must be an integer array of shape (T, 3)");
+    mesh.indices.reserve(std::size_t(tri.size()));
     for (py::ssize_t i = 0; i < tri.size(); ++i) {
         const long long v = tri.data()[i];
         if (v < 0 || v >= k.shape(1))
-            throw streak::Error("indices: index " + std::to_string(v) + " is out of range (" + std::to_string(k.shape(1)) + " vertices)");
+            throw streak::Error(where + "indices: index " + std::to_string(v) + " is out of range (" + std::to_string(k.shape(1)) + " vertices)");
         mesh.indices.push_back(std::uint32_t(v));
     }
     if (!uvs.is_none()) {
-        const FloatArray u = floats(uvs, "uvs", 2, 2, "(V, 2)");
-        if (u.shape(0) != k.shape(1)) throw streak::Error("uvs must have one row per vertex (" + std::to_string(k.shape(1)) + ")");
+        const FloatArray u = floats(uvs, (where + "uvs").c_str(), 2, 2, "(V, 2)");
+        if (u.shape(0) != k.shape(1)) throw streak::Error(where + "uvs must have one row per vertex (" + std::to_string(k.shape(1)) + ")");
         mesh.uvs = flat(u);
     }
     if (!normals.is_none()) {
-        const FloatArray n = floats(normals, "normals", 3, 3, "(K, V, 3), as keys");
-        if (n.shape(0) != k.shape(0) || n.shape(1) != k.shape(1)) throw streak::Error("normals must have the shape of keys");
+        const FloatArray n = floats(normals, (where + "normals").c_str(), 3, 3, "(K, V, 3), as keys");
+        if (n.shape(0) != k.shape(0) || n.shape(1) != k.shape(1)) throw streak::Error(where + "normals must have the shape of keys");
         mesh.normals = flat(n);
     }
+    return mesh;
+}
+
+// H x W x 4 or 3: uint8 sRGB colour (alpha linear), or float linear.
+sk::Texture textureOf(const py::handle& texture, const std::string& name) {
+    py::array t;
+    try {
+        t = py::array::ensure(texture);
+    } catch (const py::error_already_set&) {
+    }
+    if (!t || t.ndim() != 3 || (t.shape(2) != 4 && t.shape(2) != 3)) throw streak::Error(name + " must be an array of shape (H, W, 4) or (H, W, 3)");
+    sk::Texture tex;
+    tex.height = int(t.shape(0)), tex.width = int(t.shape(1));
+    const bool isBytes = t.dtype().is(py::dtype::of<std::uint8_t>());
+    const py::ssize_t texels = t.shape(0) * t.shape(1), channels = t.shape(2);
+    if (isBytes) {
+        const auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(t);
+        tex.rgba8.reserve(std::size_t(4 * texels));
+        for (py::ssize_t i = 0; i < texels; ++i)
+            for (int c = 0; c < 4; ++c) tex.rgba8.push_back(c < channels ? b.data()[i * channels + c] : 255);
+    } else {
+        const FloatArray f = FloatArray::ensure(t);
+        tex.rgbaFloat.reserve(std::size_t(4 * texels));
+        for (py::ssize_t i = 0; i < texels; ++i)
+            for (int c = 0; c < 4; ++c) tex.rgbaFloat.push_back(c < channels ? f.data()[i * channels + c] : 1.0f);
+    }
+    return tex;
+}
+
+std::array<float, 3> backgroundOf(const py::object& background) {
+    return background.is_none() ? std::array<float, 3>{0, 0, 0} : triple(background, "background");
+}
+
+sk::Scene fromArrays(const py::handle& keys, const py::handle& indices, const py::object& uvs, const py::object& normals,
+                     const py::object& texture, const py::dict& camera, const py::object& baseColor, bool doubleSided,
+                     const py::object& background) {
+    const sk::Mesh mesh = meshOf(keys, indices, uvs, normals, "");
     std::vector<sk::Texture> textures;
     sk::Material material;
     material.doubleSided = doubleSided;
     if (!baseColor.is_none()) material.baseColor = triple(baseColor, "base_color");
     if (!texture.is_none()) {
-        const py::array t = py::array::ensure(texture);
-        if (!t || t.ndim() != 3 || (t.shape(2) != 4 && t.shape(2) != 3)) throw streak::Error("texture must be an array of shape (H, W, 4) or (H, W, 3)");
-        sk::Texture tex;
-        tex.height = int(t.shape(0)), tex.width = int(t.shape(1));
-        const bool isBytes = t.dtype().is(py::dtype::of<std::uint8_t>());
-        const py::ssize_t texels = t.shape(0) * t.shape(1), channels = t.shape(2);
-        if (isBytes) {
-            const auto b = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(t);
-            for (py::ssize_t i = 0; i < texels; ++i)
-                for (int c = 0; c < 4; ++c) tex.rgba8.push_back(c < channels ? b.data()[i * channels + c] : 255);
-        } else {
-            const FloatArray f = FloatArray::ensure(t);
-            for (py::ssize_t i = 0; i < texels; ++i)
-                for (int c = 0; c < 4; ++c) tex.rgbaFloat.push_back(c < channels ? f.data()[i * channels + c] : 1.0f);
-        }
-        textures.push_back(std::move(tex));
+        textures.push_back(textureOf(texture, "texture"));
         material.texture = 0;
     }
-    return sk::Scene::fromArrays({mesh}, {material}, cameraOf(camera), textures,
-                                 background.is_none() ? std::array<float, 3>{0, 0, 0} : triple(background, "background"));
+    return sk::Scene::fromArrays({mesh}, {material}, cameraOf(camera), textures, backgroundOf(background));
+}
+
+// Many meshes, each a dict {keys, indices, uvs, normals, material, name}; materials dicts
+// {base_color, texture, opacity, double_sided, specular, shininess, name}; textures arrays.
+sk::Scene fromMeshes(const py::list& meshes, const py::list& materials, const py::list& textures, const py::dict& camera,
+                     const py::object& background) {
+    std::vector<sk::Mesh> outMeshes;
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        const std::string where = "meshes[" + std::to_string(i) + "]: ";
+        if (!py::isinstance<py::dict>(meshes[i])) throw streak::Error(where + "must be a dict {keys, indices, uvs, normals, material, name}");
+        const py::dict d = meshes[i].cast<py::dict>();
+        for (const auto& [key, value] : d) {
+            const std::string k = py::str(key);
+            if (k != "keys" && k != "indices" && k != "uvs" && k != "normals" && k != "material" && k != "name")
+                throw streak::Error(where + "unknown key '" + k + "' (keys, indices, uvs, normals, material, name)");
+        }
+        if (!d.contains("keys") || !d.contains("indices")) throw streak::Error(where + "needs 'keys' and 'indices'");
+        auto get = [&](const char* key) { return d.contains(key) ? py::object(d[key]) : py::object(py::none()); };
+        sk::Mesh mesh = meshOf(d["keys"], d["indices"], get("uvs"), get("normals"), where);
+        if (d.contains("material")) mesh.material = d["material"].cast<int>();
+        if (d.contains("name")) mesh.name = d["name"].cast<std::string>();
+        outMeshes.push_back(std::move(mesh));
+    }
+    std::vector<sk::Material> outMaterials;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const std::string where = "materials[" + std::to_string(i) + "]: ";
+        if (!py::isinstance<py::dict>(materials[i])) throw streak::Error(where + "must be a dict");
+        sk::Material m;
+        for (const auto& [key, value] : materials[i].cast<py::dict>()) {
+            const std::string k = py::str(key);
+            if (k == "base_color") m.baseColor = triple(value, (where + "base_color").c_str());
+            else if (k == "texture") m.texture = value.is_none() ? -1 : value.cast<int>();
+            else if (k == "opacity") m.opacity = value.cast<float>();
+            else if (k == "double_sided") m.doubleSided = value.cast<bool>();
+            else if (k == "specular") m.specular = value.cast<float>();
+            else if (k == "shininess") m.shininess = value.cast<float>();
+            else if (k == "name") m.name = value.cast<std::string>();
+            else throw streak::Error(where + "unknown key '" + k + "' (base_color, texture, opacity, double_sided, specular, shininess, name)");
+        }
+        outMaterials.push_back(std::move(m));
+    }
+    if (outMaterials.empty()) outMaterials.emplace_back();
+    std::vector<sk::Texture> outTextures;
+    for (std::size_t i = 0; i < textures.size(); ++i) outTextures.push_back(textureOf(textures[i], "textures[" + std::to_string(i) + "]"));
+    return sk::Scene::fromArrays(outMeshes, outMaterials, cameraOf(camera), outTextures, backgroundOf(background));
 }
 
 sk::Scene sceneOf(const py::handle& scene) {
@@ -166,7 +233,8 @@ sk::Scene sceneOf(const py::handle& scene) {
 
 PYBIND11_MODULE(streak, m) {
     m.doc() = "streak: analytic motion blur of moving and deforming triangle meshes (linear light, shutter t in [0, 1])";
-    py::register_exception<streak::Error>(m, "Error", PyExc_ValueError);
+    const auto error = py::register_exception<streak::Error>(m, "Error", PyExc_ValueError);
+    py::register_exception<streak::Cancelled>(m, "Cancelled", error.ptr());
 
     py::class_<sk::Scene>(m, "Scene", "A validated scene: streak.Scene.load(spec) or streak.Scene.from_arrays(...)")
         .def_static(
@@ -195,6 +263,11 @@ PYBIND11_MODULE(streak, m) {
                     py::arg("base_color") = py::none(), py::arg("double_sided") = true, py::arg("background") = py::none(),
                     "one mesh: keys (K, V, 3) key poses over the shutter, indices (T, 3), uvs (V, 2), normals (K, V, 3), "
                     "texture (H, W, 4|3) uint8 sRGB or float linear; camera {position, target, up, fov, znear, position_end, target_end}")
+        .def_static("from_meshes", &fromMeshes, py::arg("meshes"), py::arg("materials") = py::list(), py::arg("textures") = py::list(),
+                    py::arg("camera") = py::dict(), py::arg("background") = py::none(),
+                    "many meshes: meshes [{keys (K, V, 3), indices (T, 3), uvs (V, 2), normals (K, V, 3), material (index), name}], "
+                    "materials [{base_color, texture (index), opacity, double_sided, specular, shininess, name}] (none: one white), "
+                    "textures [(H, W, 4|3) uint8 sRGB or float linear]; camera as from_arrays; names are the Cryptomatte names")
         .def("with_shutter", [](const sk::Scene& s, const std::string& curve, float rolling) { return s.withShutter({curve, rolling}); },
              py::arg("curve") = "box", py::arg("rolling") = 1.0f)
         .def_property_readonly("num_triangles", &sk::Scene::numTriangles)
@@ -204,18 +277,41 @@ PYBIND11_MODULE(streak, m) {
         "render",
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
            const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region,
-           bool transparent, const std::vector<std::string>& passes, int cryptomatteRanks) -> py::object {
+           bool transparent, const std::vector<std::string>& passes, int cryptomatteRanks, const py::object& progress,
+           const py::object& cancel, int threads) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
             s.transparent = transparent;
             s.passes = passes, s.cryptomatteRanks = cryptomatteRanks;
             s.memoryBudgetMB = memoryBudgetMB;
+            s.threads = threads;
             if (region) s.region = sk::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
             const sk::Scene sc = sceneOf(scene);
+            // The callbacks run on this thread (the API's promise) with the GIL taken back; an
+            // exception they raise stops the render and is raised again here.
+            std::optional<py::error_already_set> raised;
+            auto guarded = [&](auto call) {
+                if (raised) return true;
+                py::gil_scoped_acquire gil;
+                try {
+                    return bool(call());
+                } catch (py::error_already_set& e) {
+                    raised.emplace(std::move(e));
+                    return true;
+                }
+            };
+            std::function<void(double)> onProgress;
+            std::function<bool()> onCancel;
+            if (!progress.is_none()) onProgress = [&](double f) { guarded([&] { progress(f); return false; }); };
+            if (!cancel.is_none()) onCancel = [&] { return guarded([&] { return py::bool_(cancel()).cast<bool>(); }); };
+            if (!progress.is_none() && cancel.is_none()) onCancel = [&] { return bool(raised); };
             sk::RenderResult result;
-            {
+            try {
                 py::gil_scoped_release release;
-                result = sk::render(sc, s);
+                result = sk::Renderer(s).render(sc, onProgress, onCancel);
+            } catch (const streak::Cancelled&) {
+                if (raised) throw std::move(*raised);
+                throw;
             }
             py::object image = passes.empty() ? py::object(arrayOf(result.image)) : py::object(layersOf(result.image));
             if (stats) return py::make_tuple(image, py::module_::import("json").attr("loads")(result.stats.json()));
@@ -224,13 +320,16 @@ PYBIND11_MODULE(streak, m) {
         py::arg("scene"), py::arg("method") = "motion-path", py::arg("width") = 1024, py::arg("height") = 768, py::arg("aa") = 1,
         py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
         py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(), py::arg("transparent") = false,
-        py::arg("passes") = std::vector<std::string>(), py::arg("cryptomatte_ranks") = 6,
+        py::arg("passes") = std::vector<std::string>(), py::arg("cryptomatte_ranks") = 6, py::arg("progress") = py::none(),
+        py::arg("cancel") = py::none(), py::arg("threads") = 0,
         "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
         "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
         "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
         "an H x W x 4 array whose alpha is each pixel's exact coverage and whose colour is premultiplied by it; "
         "passes ['depth', 'object_id', 'material_id']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
-        "(Z, Z.min, CryptoObject00.r, ...; cryptomatte_ranks pairs)");
+        "(Z, Z.min, CryptoObject00.r, ...; cryptomatte_ranks pairs); progress(fraction) is called as the render goes, and "
+        "cancel() with it: once cancel returns True the render stops and raises streak.Cancelled (both on the calling thread); "
+        "threads: worker threads (0: every core)");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace sk = streak::api;
 
@@ -138,6 +139,56 @@ TEST(Api, ARendererKeptBetweenRendersGivesTheSameImages) {
     EXPECT_EQ(second.stats.timesMs.back().first, "render");
     settings.width = sk::kMaxImageSize + 1;
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);
+}
+
+// A cancel callback is asked before the render and with each progress step, on the calling
+// thread; once it says stop, the render throws Cancelled after the steps so far and no image
+// comes back. Every CPU method that renders over time steps (tiles, instants, rows) stops.
+TEST(Api, CancelStopsEveryMethodAtItsNextProgressStep) {
+    const sk::Scene scene = sk::Scene::load("builtin:cubes?n=40");
+    for (const char* method : {"motion-path", "analytic", "higher-order", "accumulation", "stochastic", "embree"}) {
+        SCOPED_TRACE(method);
+        sk::RenderSettings settings;
+        settings.method = method, settings.width = 128, settings.height = 96;
+        settings.threads = 1;  // every part on the calling thread, so every part is a step
+        const std::thread::id caller = std::this_thread::get_id();
+        int asked = 0, steps = 0;
+        bool onCaller = true;
+        sk::Renderer renderer(settings);
+        EXPECT_THROW(renderer.render(scene, [&](double) { ++steps; }, [&] {
+                         onCaller = onCaller && std::this_thread::get_id() == caller;
+                         return ++asked > 3;
+                     }),
+                     streak::Cancelled);
+        EXPECT_EQ(asked, 4);  // before the render, then with three steps; the third stops before its report
+        EXPECT_EQ(steps, 2);
+        EXPECT_TRUE(onCaller);
+        // Told never to stop, the same renderer renders the image.
+        const sk::Image image = renderer.render(scene, {}, [] { return false; }).image;
+        EXPECT_TRUE(std::isinf(sk::compare(image, sk::render(scene, settings).image).psnr));
+    }
+    sk::RenderSettings settings;
+    EXPECT_THROW(sk::Renderer(settings).render(scene, {}, [] { return true; }), streak::Cancelled);
+}
+
+// The arrays' names are the Cryptomatte names of their meshes and materials.
+TEST(Api, ArrayNamesAreTheCryptomatteNames) {
+    sk::Mesh mesh;
+    mesh.positions = {-1, -1, 0, 1, -1, 0, 0, 1, 0, -1, -1, 0, 1, -1, 0, 0, 1, 0};
+    mesh.indices = {0, 1, 2};
+    mesh.name = "Suzanne";
+    sk::Material material;
+    material.name = "Skin";
+    material.doubleSided = true;
+    const sk::Scene scene = sk::Scene::fromArrays({mesh}, {material}, sk::Camera{});
+    sk::RenderSettings settings;
+    settings.width = 32, settings.height = 24, settings.passes = {"object_id", "material_id"};
+    const sk::Image image = sk::render(scene, settings).image;
+    std::string manifests;
+    for (const auto& [key, value] : image.metadata)
+        if (key.ends_with("/manifest")) manifests += value;
+    EXPECT_NE(manifests.find("\"Suzanne\""), std::string::npos) << manifests;
+    EXPECT_NE(manifests.find("\"Skin\""), std::string::npos) << manifests;
 }
 
 // A region render is the whole render's pixels there, placed in the frame, and stitch() joins

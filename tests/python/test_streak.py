@@ -184,6 +184,48 @@ class RenderTest(unittest.TestCase):
         curved = streak.render(scene.with_shutter("triangle"), method="analytic", width=16, height=4, unlit=True)
         self.assertAlmostEqual(float(curved[0, 3, 0]), 1 - 2 * (1.5 / 12) ** 2, delta=2e-4)
 
+    def test_meshes_with_their_materials_names_and_textures(self):
+        keys, indices, camera = sweeping_quad()
+        # Two quads: the sweeping one in front, textured grey and named; a still red one behind,
+        # filling the frame. Unlit: the ramp of grey over red.
+        back = np.array([[[-99, -99, -5], [99, -99, -5], [99, 99, -5], [-99, 99, -5]]] * 2, dtype=np.float32)
+        uvs = np.array([[0, 0], [0, 1], [1, 1], [1, 0]], dtype=np.float32)
+        grey = np.full((2, 2, 4), 0.5, dtype=np.float32)
+        scene = streak.Scene.from_meshes(
+            [dict(keys=keys, indices=indices, uvs=uvs, material=1, name="Sweeper"), dict(keys=back, indices=indices, name="Wall")],
+            materials=[dict(base_color=[1, 0, 0], double_sided=True, name="Red"), dict(texture=0, double_sided=True, name="Grey")],
+            textures=[grey], camera=camera)
+        self.assertEqual(scene.num_triangles, 4)
+        out = streak.render(scene, method="analytic", width=16, height=4, unlit=True, passes=["object_id", "material_id"])
+        expected = np.clip((14.0 - (np.arange(16) + 0.5)) / 12.0, 0.0, 1.0)
+        np.testing.assert_allclose(out["image"][1, :, 0], 0.5 * expected + (1 - expected), atol=2e-4)
+        np.testing.assert_allclose(out["image"][1, :, 1], 0.5 * expected, atol=2e-4)
+        manifests = " ".join(v for k, v in out["metadata"].items() if k.endswith("manifest"))
+        for name in ("Sweeper", "Wall", "Red", "Grey"):
+            self.assertIn(f'"{name}"', manifests)
+        with self.assertRaisesRegex(streak.Error, r"meshes\[0\]: unknown key 'colour'"):
+            streak.Scene.from_meshes([dict(keys=keys, indices=indices, colour=1)])
+        with self.assertRaisesRegex(streak.Error, r"materials\[0\]: texture 3 does not exist|material 0: texture 3 does not exist"):
+            streak.Scene.from_meshes([dict(keys=keys, indices=indices)], materials=[dict(texture=3)])
+        with self.assertRaisesRegex(streak.Error, r"meshes\[1\]: indices: index 7 is out of range"):
+            streak.Scene.from_meshes([dict(keys=keys, indices=indices), dict(keys=keys, indices=[[0, 1, 7]])])
+
+    def test_progress_and_cancel(self):
+        fractions = []
+        image = streak.render("builtin:cubes?n=20", method="analytic", width=64, height=48, threads=1, progress=fractions.append)
+        self.assertEqual(fractions[-1], 1.0)
+        self.assertEqual(fractions, sorted(fractions))
+        asked = []
+        with self.assertRaises(streak.Cancelled):
+            streak.render("builtin:cubes?n=20", method="analytic", width=64, height=48, threads=1, cancel=lambda: asked.append(1) or len(asked) > 2)
+        self.assertEqual(len(asked), 3)
+        self.assertTrue(issubclass(streak.Cancelled, streak.Error))
+        # An exception in a callback stops the render and is raised as itself.
+        with self.assertRaises(ZeroDivisionError):
+            streak.render("builtin:cubes?n=20", width=64, height=48, progress=lambda f: 1 / 0)
+        never = streak.render("builtin:cubes?n=20", method="analytic", width=64, height=48, cancel=lambda: False)
+        self.assertTrue(np.array_equal(never, image))
+
     def test_bad_arrays_raise_one_clear_error(self):
         keys, indices, camera = sweeping_quad()
         nan = keys.copy()

@@ -4,6 +4,7 @@
 #include "raster/sample_pattern.h"
 #include "scene/flat_geometry.h"
 #include "util/error.h"
+#include "util/progress.h"
 #include "util/random.h"
 
 #include <embree3/rtcore.h>
@@ -122,6 +123,7 @@ public:
         // A region render traces its pixels only: each pixel's rays are seeded by the pixel, not by
         // what was traced before it.
         const raster::PixelBounds pixels = settings.region.value_or(raster::PixelBounds{0, 0, width - 1, height - 1});
+        PartsProgress progress(context.progress, std::size_t(pixels.y1 - pixels.y0 + 1));
         tbb::parallel_for(tbb::blocked_range<int>(pixels.y0, pixels.y1 + 1, 1), [&](const tbb::blocked_range<int>& rows) {
             std::vector<std::pair<unsigned, unsigned>> skipped;
             std::int64_t localRays = 0, localOverflow = 0;
@@ -155,6 +157,7 @@ public:
                     image.alpha()[std::size_t(pixel)] = mean.w;
                     if (passes) passes->finish(*passFrame, px, py, 1.0f / float(spp * m_options.samples));
                 }
+                progress.partDone();
             }
             rays += localRays;
             overflowSamples += localOverflow;

@@ -1,0 +1,52 @@
+"""The engine's settings, per scene (scene.streak), and the add-on's preferences."""
+
+import bpy
+
+# The CPU methods (`streak methods`): the exact ones first, then the sampled references.
+METHODS = [
+    ("motion-path", "Motion path", "Exact visible spans by motion paths (Hong & Oh); the default"),
+    ("analytic", "Analytic", "Exact visible spans by the edge equations in time (Gribel et al. 2010)"),
+    ("higher-order", "Higher order", "Exact spans of curved motion (Gribel et al. 2013)"),
+    ("accumulation", "Accumulation", "Reference: the average of rasterized instants (Samples)"),
+    ("stochastic", "Stochastic", "Reference: stochastic rasterization (Samples per pixel sample)"),
+    ("embree", "Embree", "Peer: ray tracing with Embree's motion blur (Samples rays per pixel sample)"),
+]
+
+
+class StreakRenderSettings(bpy.types.PropertyGroup):
+    method: bpy.props.EnumProperty(name="Method", items=METHODS, default="motion-path")
+    aa: bpy.props.IntProperty(name="Spatial Samples", description="N x N sub-pixel samples per pixel (box filter)",
+                              default=4, min=1, max=16)
+    keys: bpy.props.IntProperty(name="Motion Keys", description="Poses evaluated over the shutter: vertices move on straight lines between "
+                                "them (0: as many as Key Tolerance needs, up to 33)", default=0, min=0, max=65)
+    key_tolerance: bpy.props.FloatProperty(name="Key Tolerance", description="With Motion Keys 0: keys are doubled until a vertex half-way "
+                                           "between two keys is within this many pixels of its straight line", default=0.125, min=0.01, max=16.0)
+    shading: bpy.props.EnumProperty(name="Shading", items=[("PHONG", "Phong", "streak's directional light and ambient"),
+                                                           ("UNLIT", "Unlit", "The base colour times the texture, as an emission shader")],
+                                    default="PHONG")
+    samples: bpy.props.IntProperty(name="Samples", description="Accumulation: instants; stochastic and embree: times per pixel sample",
+                                   default=16, min=1, max=4096)
+    threads: bpy.props.IntProperty(name="Threads", description="Worker threads (0: every core)", default=0, min=0, max=1024)
+
+
+class StreakPreferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+
+    module_folder: bpy.props.StringProperty(name="streak module folder", subtype="DIR_PATH",
+                                            description="A folder holding the streak Python module (a build's python/ folder); "
+                                            "empty: the module in the add-on's zip, or on Python's path")
+
+    def draw(self, context):
+        self.layout.prop(self, "module_folder")
+
+
+def register():
+    bpy.utils.register_class(StreakRenderSettings)
+    bpy.utils.register_class(StreakPreferences)
+    bpy.types.Scene.streak = bpy.props.PointerProperty(type=StreakRenderSettings)
+
+
+def unregister():
+    del bpy.types.Scene.streak
+    bpy.utils.unregister_class(StreakPreferences)
+    bpy.utils.unregister_class(StreakRenderSettings)
