@@ -629,7 +629,9 @@ int run(int argc, char** argv) {
     render->add_option("--passes", renderArgs.passes,
                        "passes written beside the colour into the EXR, comma-separated: depth (Z, Z.min), object_id and material_id "
                        "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact, embree sampled), "
-                       "albedo (albedo.R/G/B: every method, one more render, unlit), normal (normal.X/Y/Z: every method, one more render)");
+                       "albedo (albedo.R/G/B: every method, one more render, unlit), normal (normal.X/Y/Z: every method, one more render), "
+                       "vector (vector.X/Y/Z/W, Blender's Vector: screen motion in pixels to the frame before and from the frame after; "
+                       "CPU methods, scenes with frames, two more renders)");
     render->add_option("--cryptomatte-ranks", renderArgs.cryptomatteRanks, "Cryptomatte (ID, coverage) pairs kept per pixel")->capture_default_str();
     render->add_flag("--transparent", renderArgs.transparent,
                      "transparent background (Blender's Film > Transparent): RGBA, alpha the exact coverage; EXR premultiplied, PNG straight");

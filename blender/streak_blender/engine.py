@@ -52,7 +52,9 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         try:
             self._render(depsgraph, scene)
         except Exception as e:  # noqa: BLE001: shown to the user as one line, never a traceback
-            cancelled = type(e).__name__ == "Cancelled"
+            # Esc while the keys are evaluated (export.Cancelled) or while streak renders
+            # (streak.Cancelled): a stop, not an error.
+            cancelled = isinstance(e, export.Cancelled) or type(e).__name__ == "Cancelled"
             last_render["status"] = "cancelled" if cancelled else "error"
             if not cancelled:
                 last_render["error"] = str(e)
@@ -106,7 +108,7 @@ class StreakRenderEngine(bpy.types.RenderEngine):
             rgba[..., 3] = 1.0
         # A border render's result is the border's rectangle (self.size_x by size_y), which
         # Blender places in the frame itself.
-        result = self.begin_result(0, 0, rgba.shape[1], rgba.shape[0])
+        result = self.begin_result(0, 0, rgba.shape[1], rgba.shape[0], layer=view_layer.name)
         try:
             layer = result.layers[0]
             layer.passes["Combined"].rect = _rows_up(rgba)
@@ -125,11 +127,18 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         finally:
             self.end_result(result)
         # Cryptomatte's header (name, hash, conversion, manifest) in the render's metadata, as
-        # Cycles writes it: the layer named as Blender names its own, ViewLayer.CryptoObject.
+        # Cycles writes it: the layer named as Blender names its own, ViewLayer.CryptoObject,
+        # and keyed by that name, so each view layer's stays apart.
         whole = self.get_result()
-        for key, value in layers.get("metadata", {}).items():
-            if key.startswith("cryptomatte/"):
-                whole.stamp_data_add_field(key, f"{view_layer.name}.{value}" if key.endswith("/name") else value)
+        metadata = layers.get("metadata", {})
+        for key, value in metadata.items():
+            parts = key.split("/")
+            if len(parts) == 3 and parts[0] == "cryptomatte" and parts[2] == "name":
+                layer_name = f"{view_layer.name}.{value}"
+                prefix = f"cryptomatte/{streak.cryptomatte_key(layer_name)}/"
+                whole.stamp_data_add_field(prefix + "name", layer_name)
+                for field in ("hash", "conversion", "manifest"):
+                    whole.stamp_data_add_field(prefix + field, metadata[f"cryptomatte/{parts[1]}/{field}"])
         last_render.update({"status": "done", "stats": stats, "render_ms": (time.perf_counter() - started) * 1000.0})
         self.update_stats("", f"{summary}, {last_render['render_ms'] / 1000.0:.2f} s")
 

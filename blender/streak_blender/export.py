@@ -52,7 +52,10 @@ def shutter_times(scene, frame, keys):
 
 
 def shutter_curve(scene, points=32):
-    """Blender's Shutter Curve as streak's piecewise-linear curve T0:W0,...; "box" when flat."""
+    """Blender's Shutter Curve as streak's piecewise-linear curve T0:W0,...; "box" when flat or
+    when motion blur is off."""
+    if not scene.render.use_motion_blur:
+        return "box"
     mapping = scene.render.motion_blur_shutter_curve
     mapping.initialize()
     curve = mapping.curves[0]
@@ -203,17 +206,17 @@ class Materials:
         self._images = {}
 
     def index(self, material):
-        key = material.name if material is not None else None
+        key = material.name_full if material is not None else None  # linked libraries may repeat a name
         if key not in self._index:
             self._index[key] = len(self.materials)
             self.materials.append(self._convert(material))
         return self._index[key]
 
     def _texture(self, image):
-        if image.name not in self._images:
-            self._images[image.name] = len(self.textures)
+        if image.name_full not in self._images:
+            self._images[image.name_full] = len(self.textures)
             self.textures.append(texture_array(image))
-        return self._images[image.name]
+        return self._images[image.name_full]
 
     def _convert(self, material):
         if material is None:
@@ -273,7 +276,7 @@ class Pose:
         self.mirrored = np.linalg.det(m[:3, :3]) < 0.0
         self.material_index = np.empty(tris, dtype=np.int32)
         mesh.loop_triangles.foreach_get("material_index", self.material_index)
-        uv_layer = mesh.uv_layers.active
+        uv_layer = next((layer for layer in mesh.uv_layers if layer.active_render), None)  # what image textures sample
         self.uvs = None
         if uv_layer is not None:
             uv = np.empty(len(mesh.loops) * 2, dtype=np.float32)
@@ -291,9 +294,9 @@ class Pose:
 
 def _instance_key(instance):
     obj = instance.object
-    name = obj.original.name if obj.original is not None else obj.name
+    name = (obj.original or obj).name_full
     if instance.is_instance:
-        return (name, tuple(instance.persistent_id), instance.parent.original.name if instance.parent else "")
+        return (name, tuple(instance.persistent_id), instance.parent.original.name_full if instance.parent else "")
     return (name,)
 
 
@@ -314,7 +317,7 @@ def snapshot(depsgraph, scene):
             if mesh is None or len(mesh.polygons) == 0:
                 continue
             pose = Pose(mesh, matrix)
-            pose.name = key[0]
+            pose.name = (obj.original or obj).name
             pose.slots = [slot.material for slot in evaluated.material_slots]
             poses[key] = pose
         finally:
@@ -325,19 +328,25 @@ def snapshot(depsgraph, scene):
     return poses, CameraKey(camera.matrix_world, vertical_fov(camera, scene))
 
 
+class Cancelled(Exception):
+    """The user stopped the render while its keys were being evaluated."""
+
+
 class Keys:
     """Snapshots at the key times, taken through the engine's frame_set. With `count` 0 the keys
     start at the shutter's ends and double (as the command line's --key-tolerance does) until
     every vertex half-way between two keys is within `tolerance` pixels of the straight line
     between them, up to 33."""
 
-    def __init__(self, engine, depsgraph, scene):
-        self.engine, self.depsgraph, self.scene = engine, depsgraph, scene
+    def __init__(self, engine, depsgraph, scene, should_stop=lambda: False):
+        self.engine, self.depsgraph, self.scene, self.should_stop = engine, depsgraph, scene, should_stop
         self.frame = scene.frame_current + scene.frame_subframe  # frame_set moves the scene's
         self.cache = {}
 
     def at(self, time):
         if time not in self.cache:
+            if self.should_stop():
+                raise Cancelled("the render was cancelled")
             whole = math.floor(time)
             self.engine.frame_set(int(whole), float(time - whole))
             self.cache[time] = snapshot(self.depsgraph, self.scene)
@@ -385,11 +394,15 @@ def build(engine, depsgraph, settings, height):
     """(meshes, materials, textures, camera dict, Report) for streak.Scene.from_meshes."""
     scene = depsgraph.scene
     report = Report()
-    keys = Keys(engine, depsgraph, scene)
+    keys = Keys(engine, depsgraph, scene, engine.should_stop)
     frame = scene.frame_current
     subframe = scene.frame_subframe
+    frame_time = frame + subframe
     try:
         times, snaps = keys.choose(settings.keys, settings.key_tolerance, height)
+        # The scene at the frame itself: which objects are drawn, and the pose of those whose
+        # topology changes over the shutter (they stand there, or move from there by velocity).
+        reference = keys.at(frame_time)[0]
     finally:
         engine.frame_set(frame, subframe)
     report.keys = len(times)
@@ -397,10 +410,8 @@ def build(engine, depsgraph, settings, height):
     bake = not camera_follows_streak(cameras)
     report.camera_baked = bake
     fps = scene.render.fps / scene.render.fps_base
-    frame_time = frame + subframe
     materials = Materials(report)
     meshes = []
-    reference = snaps[len(snaps) // 2][0]  # the pose topology-changing objects are taken in
     for key in reference:
         name = reference[key].name
         poses = [poses_k.get(key) for poses_k, _ in snaps]
@@ -450,11 +461,18 @@ def build(engine, depsgraph, settings, height):
     else:
         camera = cameras[0].pose()
         end = cameras[-1].pose()
-        camera["position_end"], camera["target_end"] = end["position"], end["target"]
+        camera["position_end"], camera["target_end"], camera["up_end"] = end["position"], end["target"], end["up"]
     camera["fov"] = math.degrees(cameras[0].fov)
     camera["znear"] = max(1e-6, float(scene.camera.data.clip_start))
     if scene.camera.data.shift_x != 0.0 or scene.camera.data.shift_y != 0.0:
         report.unsupported.append("the camera's shift is ignored")
+    if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
+        report.unsupported.append("pixels are rendered square: the pixel aspect only shapes the field of view")
+    if depsgraph.view_layer.use_pass_vector:
+        report.unsupported.append("the Vector pass is not written: the add-on does not yet evaluate the frames around the shutter's "
+                                  "(streak render --passes vector does, on a glTF export)")
+    if bake and depsgraph.view_layer.use_pass_normal:
+        report.unsupported.append("the camera's path is carried by the geometry, so the Normal pass is in the camera's space")
     return meshes, materials.materials, materials.textures, camera, report
 
 

@@ -55,6 +55,10 @@ Image stitch(const std::vector<Image>& regions);
 // `name` in the image's Cryptomatte type `type` ("CryptoObject", "CryptoMaterial"), summed
 // over the ranks whose ID is the name's. Throws Error when the image has no such layers.
 std::vector<float> cryptomatteMatte(const Image& image, const std::string& type, const std::string& name);
+// The metadata key of a Cryptomatte layer (the first seven hex digits of its name's
+// MurmurHash3): "cryptomatte/<key>/name" and the rest. A client renaming layers
+// ("ViewLayer.CryptoObject", as Blender names its own) keys them anew with it.
+std::string cryptomatteKey(const std::string& layerName);
 
 // Throws Error unless the path ends in an image extension writeImage knows (.png, .exr), so a
 // caller can refuse a bad output before a long render.

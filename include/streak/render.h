@@ -65,7 +65,11 @@ struct RenderSettings {
     // (sampled), refused by the others. "albedo" (albedo.R/G/B: the unlit colour of what shows,
     // premultiplied as the colour): every method, by one more render shaded unlit. "normal"
     // (normal.X/Y/Z: the world-space unit normal of what shows, averaged and premultiplied
-    // likewise): every method, by one more render.
+    // likewise): every method, by one more render. "vector" (vector.X/Y/Z/W, Blender's Vector:
+    // the screen motion in pixels, y up, of the surface point that shows from the frame to the
+    // frame before and from the frame after to the frame, Cycles' signs, averaged as the
+    // normal): the CPU methods on a scene with frames (Scene::load of a glTF, OBJ or PLY file),
+    // by two more renders.
     std::vector<std::string> passes;
     int cryptomatteRanks = 6;
     bool sampleGrid = false;

@@ -28,6 +28,12 @@ struct Scene::Impl {
     bool isGltf = false;
     std::optional<Trail> trail;            ///< the trail a glTF scene was loaded over
     RenderStats loadStats;                 ///< the load's time and the loader's figures
+    std::optional<LoadOptions> loadOptions;  ///< how a scene with a clock was loaded (the vector pass loads its frames)
+
+    // The scene with its surfaces' motion across the frames around the shutter's (Mesh::
+    // framePositions, Scene::frameMotion) for an image of `aspect`: the vector pass's. Throws
+    // Error for a scene without a clock, or one whose meshes change between those frames.
+    streak::Scene withFrameMotion(float aspect) const;
 
     // Whether a trail method may draw this scene with `needed`: a glTF scene must have been
     // loaded over that trail; a built-in or arrays scene's shutter is its trail.

@@ -101,6 +101,8 @@ Image stitch(const std::vector<Image>& regions) {
     return imageOf(frame);
 }
 
+std::string cryptomatteKey(const std::string& layerName) { return streak::cryptomatteKey(layerName); }
+
 std::vector<float> cryptomatteMatte(const Image& image, const std::string& type, const std::string& name) {
     const float id = cryptomatteId(name);
     const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);

@@ -36,21 +36,25 @@ void reportCamera(const streak::Camera& camera, RenderStats& stats) {
 }
 
 // The caller's progress and cancel callbacks. A cancel is thrown from the reporting thread (the
-// caller's), which unwinds the method's parallel loops as any exception does.
+// caller's), which unwinds the method's parallel loops as any exception does. A render that is
+// several method renders (the beauty, then the albedo and normal passes) reports each as its
+// stage of the whole.
 class CallbackProgress final : public ProgressReporter {
 public:
     CallbackProgress(const std::function<void(double)>& progress, const std::function<bool()>& cancel) : m_progress(progress), m_cancel(cancel) {}
     void update(double fraction) override {
         checkCancel();
-        if (m_progress) m_progress(fraction);
+        if (m_progress) m_progress((m_stage + fraction) / m_stages);
     }
     void checkCancel() const {
         if (m_cancel && m_cancel()) throw Cancelled();
     }
+    void setStage(int stage, int stages) { m_stage = stage, m_stages = stages; }
 
 private:
     const std::function<void(double)>& m_progress;
     const std::function<bool()>& m_cancel;
+    double m_stage = 0.0, m_stages = 1.0;
 };
 
 Stats statsOf(const RenderStats& in) {
@@ -61,30 +65,40 @@ Stats statsOf(const RenderStats& in) {
     return out;
 }
 
+// One channel of a shaded pass: its name, and the scale of the colour component it takes.
+struct PassChannel {
+    const char* name;
+    float scale = 1.0f;
+};
+
 // A pass that is the same visibility shaded another way (a render of the method again, with the
-// same samples), over a transparent background: the albedo (unlit) or the normal. Each pixel's
-// coverage-weighted value, premultiplied as the colour is, into channels layer.X, .Y, .Z (or
-// .R, .G, .B). Timed as "<layer> render".
+// same samples), over a transparent background: the albedo (unlit), the normal, or one half of
+// the vector. Each pixel's coverage-weighted value, premultiplied as the colour is, into the
+// channels layer.<name>, one per colour component. Timed as "<layer> render" (the vector's two
+// renders add up there).
 void addShadedPass(streak::Renderer& method, const streak::RenderSettings& settings, ShadingMode mode, const char* layer,
-                   const std::array<const char*, 3>& channels, const std::string& methodName, const streak::Scene& scene, streak::Image& image,
-                   RenderStats& stats) {
+                   std::initializer_list<PassChannel> channels, const std::string& methodName, const streak::Scene& scene, streak::Image& image,
+                   RenderStats& stats, ProgressReporter* progress) {
     streak::RenderSettings shaded = settings;
     shaded.shading = mode;
     shaded.passes = PassRequest();
     RenderStats passStats;
-    RenderContext context{passStats};
+    RenderContext context{passStats, progress};
     PhaseTimer timer(stats, std::string(layer) + " render");
     streak::Image pass = method.render(scene, shaded, context);
     if (!pass.hasAlpha()) throw RenderFailure("method " + methodName + " gave no coverage for the " + layer + " pass");
-    pass = mode == ShadingMode::Normal ? std::move(pass) : withTransparentBackground(std::move(pass), scene.background);
-    for (int c = 0; c < 3; ++c) {
+    const bool isSigned = mode == ShadingMode::Normal || isVectorPass(mode);
+    if (!isSigned) pass = withTransparentBackground(std::move(pass), scene.background);
+    int c = 0;
+    for (const PassChannel& channel : channels) {
         std::vector<float> values(pass.pixels().size());
         for (std::size_t i = 0; i < values.size(); ++i) {
-            // Normals may be negative: the background's share is taken out without clamping.
-            const float background = mode == ShadingMode::Normal ? scene.background[c] * (1.0f - pass.alpha()[i]) : 0.0f;
-            values[i] = pass.pixels()[i][c] - background;
+            // Normals and vectors may be negative: the background's share is taken out without clamping.
+            const float background = isSigned ? scene.background[c] * (1.0f - pass.alpha()[i]) : 0.0f;
+            values[i] = channel.scale * (pass.pixels()[i][c] - background);
         }
-        image.addChannel(std::string(layer) + "." + channels[std::size_t(c)], std::move(values));
+        image.addChannel(std::string(layer) + "." + channel.name, std::move(values));
+        ++c;
     }
 }
 
@@ -121,7 +135,11 @@ struct Renderer::Impl {
     std::unique_ptr<streak::Renderer> method;
     bool albedo = false;  ///< the albedo pass: another render, unlit
     bool normal = false;  ///< the normal pass: another render, shading normals
+    bool vector = false;  ///< the vector pass: two more renders, of the scene with its frame motion
 };
+
+// The GL twins shade in their own shaders, which know no frame motion.
+static bool isGlMethod(const std::string& name) { return name.size() > 3 && name.ends_with("-gl"); }
 
 Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Impl>()) {
     if (settings.width <= 0 || settings.height <= 0 || settings.width > kMaxImageSize || settings.height > kMaxImageSize)
@@ -152,8 +170,11 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
         else if (pass == "material_id") s.passes.materialId = true;
         else if (pass == "albedo") m_impl->albedo = true;
         else if (pass == "normal") m_impl->normal = true;
-        else throw Error("render: unknown pass '" + pass + "' (depth, object_id, material_id, albedo, normal)");
+        else if (pass == "vector") m_impl->vector = true;
+        else throw Error("render: unknown pass '" + pass + "' (depth, object_id, material_id, albedo, normal, vector)");
     }
+    if (m_impl->vector && isGlMethod(settings.method))
+        throw Error("method " + settings.method + " does not write the vector pass: its shaders have no frame motion (the CPU methods write it)");
     if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
         throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
     s.passes.cryptoRanks = settings.cryptomatteRanks;
@@ -207,6 +228,15 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
     CallbackProgress reporter(progress, cancel);
     reporter.checkCancel();
     RenderContext context{stats, progress || cancel ? &reporter : nullptr};
+    const int stages = 1 + (m_impl->albedo ? 1 : 0) + (m_impl->normal ? 1 : 0) + (m_impl->vector ? 2 : 0);  // the beauty, then each shaded pass
+    // The vector pass's scene (its frames loaded) before anything renders: a scene without
+    // frames is bad input, found at once.
+    std::optional<streak::Scene> framed;
+    if (m_impl->vector) {
+        PhaseTimer timer(stats, "vector frames");
+        framed = in.withFrameMotion(float(settings.width) / float(settings.height));
+    }
+    reporter.setStage(0, stages);
     RenderResult result;
     {
         PhaseTimer timer(stats, "render");
@@ -214,11 +244,26 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
         if (!settings.transparent) image.setAlpha({});
         else if (!image.hasAlpha()) throw RenderFailure("method " + settings.method + " gave no coverage for a transparent background");
         else image = withTransparentBackground(std::move(image), in.scene.background);
-        if (m_impl->albedo || m_impl->normal) reporter.checkCancel();
+        int stage = 0;
+        auto nextStage = [&] {
+            reporter.checkCancel();
+            reporter.setStage(++stage, stages);
+            return context.progress;
+        };
         if (m_impl->albedo)
-            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Unlit, "albedo", {"R", "G", "B"}, settings.method, in.scene, image, stats);
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Unlit, "albedo", {{"R"}, {"G"}, {"B"}}, settings.method, in.scene, image,
+                          stats, nextStage());
         if (m_impl->normal)
-            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Normal, "normal", {"X", "Y", "Z"}, settings.method, in.scene, image, stats);
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::Normal, "normal", {{"X"}, {"Y"}, {"Z"}}, settings.method, in.scene, image,
+                          stats, nextStage());
+        if (framed) {
+            // NDC to pixels, y up as Blender's raster (half the image per NDC unit).
+            const float sx = 0.5f * float(settings.width), sy = 0.5f * float(settings.height);
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::VectorPrevious, "vector", {{"X", sx}, {"Y", sy}}, settings.method, *framed,
+                          image, stats, nextStage());
+            addShadedPass(*m_impl->method, m_impl->layerSettings, ShadingMode::VectorNext, "vector", {{"Z", sx}, {"W", sy}}, settings.method, *framed,
+                          image, stats, nextStage());
+        }
         const std::optional<Region>& r = settings.region;
         result.image = imageOf(r ? image.region(r->x0, r->y0, r->x1, r->y1) : image);
     }

@@ -175,6 +175,7 @@ Scene Scene::load(const std::string& spec, const LoadOptions& options) {
         gltf.frame = shutterOpenFrame(position, options.frame, options.shutterFrames);
         gltf.velocityFrame = options.frame;  // velocities move vertices from where they are at the frame
     }
+    if (impl->isGltf) impl->loadOptions = options;
     {
         PhaseTimer timer(stats, "load");
         impl->scene = loadScene(spec, gltf, &stats);
@@ -215,6 +216,49 @@ Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Mater
     scene.background = backgroundOf(background);
     impl->cleanup = validateScene(scene);
     return Impl::wrap(std::move(impl));
+}
+
+streak::Scene Scene::Impl::withFrameMotion(float aspect) const {
+    if (!loadOptions || trail)
+        throw Error("the vector pass needs a scene with frames: a glTF, OBJ or PLY file loaded over a shutter (" + spec + " has none)");
+    const LoadOptions& main = *loadOptions;
+    const double open = shutterOpenFrame(parseShutterPosition(main.shutterPosition), main.frame, main.shutterFrames);
+    const bool isFramed = loadStats.info().count("camera_source") && loadStats.info().at("camera_source") == "framed";
+    streak::Scene out = scene;
+    FrameMotion motion;
+    for (int k = 0; k < 3; ++k) {
+        // The scene standing still at frame F - 1, F or F + 1.
+        LoadOptions o = main;
+        o.frame = main.frame + double(k - 1);
+        o.shutterFrames = 0.0, o.shutterPosition = "start", o.motionKeys = 2, o.motionCurve = "linear";
+        if (main.lookAt && main.lookAt->positionEnd) {
+            // An explicit camera moving over the shutter keeps moving at its pace past it.
+            const double u = main.shutterFrames > 0.0 ? (o.frame - open) / main.shutterFrames : 0.0;
+            LookAt& look = *o.lookAt;
+            for (int c = 0; c < 3; ++c) {
+                look.position[c] += float(u) * ((*main.lookAt->positionEnd)[c] - main.lookAt->position[c]);
+                look.target[c] += float(u) * (main.lookAt->targetEnd.value_or(main.lookAt->target)[c] - main.lookAt->target[c]);
+            }
+            look.positionEnd.reset(), look.targetEnd.reset();
+        }
+        const Scene at = Scene::load(spec, o);
+        const streak::Scene& still = at.impl().scene;
+        if (still.meshes.size() != scene.meshes.size())
+            throw Error("the vector pass: frame " + numberList({o.frame}) + " has " + std::to_string(still.meshes.size()) + " meshes, the frame's scene " +
+                        std::to_string(scene.meshes.size()));
+        for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+            const streak::Mesh& mesh = scene.meshes[m];
+            if (still.meshes[m].name != mesh.name || still.meshes[m].numVertices() != mesh.numVertices())
+                throw Error("the vector pass: mesh '" + mesh.name + "' changes its vertices at frame " + numberList({o.frame}));
+            const std::span<const glm::vec3> positions = still.meshes[m].keyPositions(0);
+            out.meshes[m].framePositions[std::size_t(k)].assign(positions.begin(), positions.end());
+        }
+        // A framed scene (no camera given) keeps the frame's framing; a camera of the file's
+        // is where its animation has it at that frame.
+        motion.clipFromWorld[std::size_t(k)] = (isFramed ? scene.camera : still.camera).clipFromWorld(0.0f, aspect);
+    }
+    out.frameMotion = motion;
+    return out;
 }
 
 Scene Scene::withShutter(const Shutter& shutter) const {

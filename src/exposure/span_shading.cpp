@@ -124,11 +124,13 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         for (int i = 0; i < 3; ++i)
             if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
     }
-    if (mode == ShadingMode::Normal) {
-        // The normal pass: the span's mean normal (Simpson's weights over its ends and middle),
-        // with the alpha unlit shading gives the span, so translucent coverage is the beauty's.
+    if (mode == ShadingMode::Normal || isVectorPass(mode)) {
+        // The normal and vector passes: the span's mean (Simpson's weights over its ends and
+        // middle), with the alpha unlit shading gives the span, so translucent coverage is the
+        // beauty's.
         ShadedColor result = shadeTimeSpan(scene, ShadingMode::Unlit, t0, t1, point, settings);
-        result.color = (shadingNormal(ends[0]) + 4.0f * shadingNormal(ends[1]) + shadingNormal(ends[2])) / 6.0f;
+        auto value = [&](const SurfacePoint& p) { return mode == ShadingMode::Normal ? shadingNormal(p) : vectorOf(mode, p); };
+        result.color = (value(ends[0]) + 4.0f * value(ends[1]) + value(ends[2])) / 6.0f;
         return result;
     }
     const std::uint32_t materialIndex = ends[1].material;

@@ -93,12 +93,13 @@ sk::Camera cameraOf(const py::dict& camera) {
         else if (k == "up") c.open.up = triple(value, "camera['up']");
         else if (k == "fov") c.verticalFovDegrees = value.cast<float>();
         else if (k == "znear") c.zNear = value.cast<float>();
-        else if (k != "position_end" && k != "target_end")
-            throw streak::Error("camera: unknown key '" + k + "' (position, target, up, fov, znear, position_end, target_end)");
+        else if (k != "position_end" && k != "target_end" && k != "up_end")
+            throw streak::Error("camera: unknown key '" + k + "' (position, target, up, fov, znear, position_end, target_end, up_end)");
     }
     c.close = c.open;
     if (camera.contains("position_end")) c.close.position = triple(camera["position_end"], "camera['position_end']");
     if (camera.contains("target_end")) c.close.target = triple(camera["target_end"], "camera['target_end']");
+    if (camera.contains("up_end")) c.close.up = triple(camera["up_end"], "camera['up_end']");
     return c;
 }
 
@@ -262,7 +263,7 @@ PYBIND11_MODULE(streak, m) {
                     py::arg("normals") = py::none(), py::arg("texture") = py::none(), py::arg("camera") = py::dict(),
                     py::arg("base_color") = py::none(), py::arg("double_sided") = true, py::arg("background") = py::none(),
                     "one mesh: keys (K, V, 3) key poses over the shutter, indices (T, 3), uvs (V, 2), normals (K, V, 3), "
-                    "texture (H, W, 4|3) uint8 sRGB or float linear; camera {position, target, up, fov, znear, position_end, target_end}")
+                    "texture (H, W, 4|3) uint8 sRGB or float linear; camera {position, target, up, fov, znear, position_end, target_end, up_end}")
         .def_static("from_meshes", &fromMeshes, py::arg("meshes"), py::arg("materials") = py::list(), py::arg("textures") = py::list(),
                     py::arg("camera") = py::dict(), py::arg("background") = py::none(),
                     "many meshes: meshes [{keys (K, V, 3), indices (T, 3), uvs (V, 2), normals (K, V, 3), material (index), name}], "
@@ -313,6 +314,7 @@ PYBIND11_MODULE(streak, m) {
                 if (raised) throw std::move(*raised);
                 throw;
             }
+            if (raised) throw std::move(*raised);  // raised by the last callback, after which nothing asked
             py::object image = passes.empty() ? py::object(arrayOf(result.image)) : py::object(layersOf(result.image));
             if (stats) return py::make_tuple(image, py::module_::import("json").attr("loads")(result.stats.json()));
             return image;
@@ -326,7 +328,7 @@ PYBIND11_MODULE(streak, m) {
         "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
         "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
         "an H x W x 4 array whose alpha is each pixel's exact coverage and whose colour is premultiplied by it; "
-        "passes ['depth', 'object_id', 'material_id']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
+        "passes ['depth', 'object_id', 'material_id', 'albedo', 'normal', 'vector']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
         "(Z, Z.min, CryptoObject00.r, ...; cryptomatte_ranks pairs); progress(fraction) is called as the render goes, and "
         "cancel() with it: once cancel returns True the render stops and raises streak.Cancelled (both on the calling thread); "
         "threads: worker threads (0: every core)");
@@ -359,6 +361,8 @@ PYBIND11_MODULE(streak, m) {
         return out;
     }, py::arg("a"), py::arg("b"),
     "[{'pass', 'rms', 'max', 'pixels'}] for the passes two image files both have: alpha, each channel, each Cryptomatte name's matte");
+    m.def("cryptomatte_key", &sk::cryptomatteKey, py::arg("layer_name"),
+          "the metadata key of a Cryptomatte layer name ('ViewLayer.CryptoObject'): cryptomatte/<key>/name, ...");
     m.def("cryptomatte_matte", [](const std::string& path, const std::string& type, const std::string& name) {
         const sk::Image image = sk::readImage(path);
         const std::vector<float> matte = sk::cryptomatteMatte(image, type, name);

@@ -96,7 +96,22 @@ SurfacePoint FlatGeometry::surfacePoint(const FlatTriangle& tri, const std::arra
     p.vertexColor = vertexColorAt(tri, bary);
     p.material = tri.material;
     p.isFrontFacing = isFrontFacing;
+    if (m_scene.frameMotion && !mesh.framePositions[0].empty()) p.frameMotion = frameMotionAt(tri, bary);
     return p;
+}
+
+glm::vec4 FlatGeometry::frameMotionAt(const FlatTriangle& tri, const glm::vec3& bary) const {
+    const Mesh& mesh = meshOf(tri);
+    const std::uint32_t base = m_meshVertexOffset[tri.mesh];
+    std::array<glm::vec2, 3> ndc{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const std::vector<glm::vec3>& at = mesh.framePositions[k];
+        const glm::vec3 position = bary.x * at[tri.vertices.x - base] + bary.y * at[tri.vertices.y - base] + bary.z * at[tri.vertices.z - base];
+        const glm::vec4 clip = m_scene.frameMotion->clipFromWorld[k] * glm::vec4(position, 1.0f);
+        if (!(clip.w > 0.0f)) return glm::vec4(0.0f);  // behind that frame's camera: no vector, as Cycles gives none
+        ndc[k] = glm::vec2(clip) / clip.w;
+    }
+    return glm::vec4(ndc[0] - ndc[1], ndc[1] - ndc[2]);
 }
 
 }  // namespace streak

@@ -47,6 +47,9 @@ public:
 
     // What shading needs at a point with barycentrics `bary` (and the barycentrics one pixel
     // right and down, for the texture footprint) given the triangle's corners at that time.
+    // The NDC motion across frames (SurfacePoint::frameMotion) of the point at `bary` of a
+    // triangle whose mesh has framePositions.
+    glm::vec4 frameMotionAt(const FlatTriangle& tri, const glm::vec3& bary) const;
     SurfacePoint surfacePoint(const FlatTriangle& tri, const std::array<glm::vec3, 3>& corners,
                               const std::array<glm::vec3, 3>& cornerNormals, const glm::vec3& bary,
                               const glm::vec3& baryRight, const glm::vec3& baryDown, bool isFrontFacing) const;

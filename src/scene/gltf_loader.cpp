@@ -917,6 +917,7 @@ private:
             camera.verticalFov = glm::radians(look.verticalFovDegrees);
             const float distance = std::max(glm::length(look.position - centre), glm::length(positionEnd - centre));
             camera.zNear = std::max(1e-4f * (diagonal + distance), 1e-8f);
+            if (m_stats) m_stats->setInfo("camera_source", "look-at");
             return;
         }
 
@@ -947,6 +948,7 @@ private:
             camera.close = poseFromMatrix(m_closePoses.worldFromNode[std::size_t(cameraNode)], what);
             camera.verticalFov = float(perspective.yfov);
             camera.zNear = float(perspective.znear);
+            if (m_stats) m_stats->setInfo("camera_source", "gltf camera " + str(index));
             return;
         }
 
@@ -957,6 +959,7 @@ private:
         const float distance = half.z + std::max(1.1f * reach, 1e-6f);
         camera.open = camera.close = CameraPose::lookAt(centre + glm::vec3(0.0f, 0.0f, distance), centre);
         camera.zNear = std::max(0.01f * (distance - half.z), 1e-9f);
+        if (m_stats) m_stats->setInfo("camera_source", "framed");
     }
 
     const gltf::Document& m_document;

@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -29,6 +30,9 @@ struct Mesh {
     std::vector<glm::vec4> colors;       ///< linear RGBA, one per vertex, or empty (white); multiplies the albedo
     std::vector<glm::uvec3> triangles;   ///< counter-clockwise front faces
     std::uint32_t material = 0;          ///< index into Scene::materials
+    // The vertices at the frames before, at and after the frame the shutter sits at (the vector
+    // pass, Scene::frameMotion): empty, or numVertices() each.
+    std::array<std::vector<glm::vec3>, 3> framePositions;
 
     std::size_t numVertices() const { return numKeys > 0 ? positions.size() / std::size_t(numKeys) : 0; }
     bool hasNormals() const { return !normals.empty(); }

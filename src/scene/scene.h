@@ -8,7 +8,11 @@
 
 #include <glm/vec3.hpp>
 
+#include <glm/mat4x4.hpp>
+
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +23,14 @@ struct DirectionalLight {
     glm::vec3 toLight{0.0f, 0.0f, 1.0f};  ///< unit vector from the surface towards the light
     glm::vec3 color{0.85f};               ///< linear radiance scale
     glm::vec3 ambient{0.2f};              ///< added to the diffuse term, times albedo
+};
+
+// How the surfaces move across frames, for the vector pass (Blender's Vector): with each
+// mesh's Mesh::framePositions at the frames F - 1, F and F + 1 around the frame F the shutter
+// sits at, the projection of each frame's camera. Only a scene with a clock has it (glTF, OBJ
+// and PLY), and only the vector pass's renders.
+struct FrameMotion {
+    std::array<glm::mat4, 3> clipFromWorld;  ///< at F - 1, F, F + 1, for the image's aspect
 };
 
 // Scene is everything a renderer needs for one frame: moving meshes, materials, textures, a
@@ -33,6 +45,7 @@ struct Scene {
     DirectionalLight light;
     glm::vec3 background{0.0f};  ///< linear colour of pixels (and time spans) nothing covers
     Shutter shutter;             ///< how [0, 1] is exposed: box, global by default
+    std::optional<FrameMotion> frameMotion;
 
     std::size_t numTriangles() const;
     bool hasTranslucency() const;

@@ -45,6 +45,11 @@ glm::vec3 shadingNormal(const SurfacePoint& point) {
     return (point.isFrontFacing ? 1.0f : -1.0f) * point.normal / length;
 }
 
+glm::vec3 vectorOf(ShadingMode mode, const SurfacePoint& point) {
+    const glm::vec4& m = point.frameMotion;
+    return mode == ShadingMode::VectorPrevious ? glm::vec3(m.x, m.y, 0.0f) : glm::vec3(m.z, m.w, 0.0f);
+}
+
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye) {
     const Material& material = scene.materials[point.material];
     ShadedColor result = materialAlbedo(scene, point.material, point.uv, {point.duvdx, point.duvdy}, point.vertexColor);
@@ -52,6 +57,8 @@ ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoin
         result.color = lightPhong(scene, material, result.color, point.position, point.normal, point.isFrontFacing, eye);
     else if (mode == ShadingMode::Normal)
         result.color = shadingNormal(point);
+    else if (isVectorPass(mode))
+        result.color = vectorOf(mode, point);
     return result;
 }
 

@@ -14,7 +14,14 @@ enum class ShadingMode : std::uint8_t {
     Unlit,   ///< base colour times texture: the time-averaged albedo
     Phong,   ///< one directional light plus ambient, as in the papers
     Normal,  ///< the unit world-space normal as the colour (the normal pass), with Unlit's alpha; GL: shading.glsl's isNormalPass
+    // The vector pass: the point's screen motion (NDC, SurfacePoint::frameMotion) from the frame
+    // to the frame before (x, y) or from the frame after to the frame (x, y), as the colour,
+    // with Unlit's alpha. CPU methods only (Scene::frameMotion).
+    VectorPrevious,
+    VectorNext,
 };
+
+inline bool isVectorPass(ShadingMode mode) { return mode == ShadingMode::VectorPrevious || mode == ShadingMode::VectorNext; }
 
 // SurfacePoint is what a renderer knows about a visible point at one time: enough to shade it.
 struct SurfacePoint {
@@ -26,6 +33,10 @@ struct SurfacePoint {
     glm::vec4 vertexColor{1.0f}; ///< interpolated linear vertex colour; multiplies albedo and alpha
     std::uint32_t material = 0;
     bool isFrontFacing = true; ///< back faces of double-sided materials are lit from their side
+    // With Scene::frameMotion: the NDC motion of this point of the surface (its barycentrics)
+    // from its place at frame F to F - 1 (x, y), and from F + 1 to F (z, w), as Cycles writes
+    // the Vector pass (pre - centre, centre - post); 0 without, or behind a frame's camera.
+    glm::vec4 frameMotion{0.0f};
 };
 
 struct ShadedColor {
@@ -36,6 +47,9 @@ struct ShadedColor {
 // The unit normal a point is shaded with, turned towards the viewer on a back face (as Phong
 // lights it); 0 for a degenerate normal. The normal pass's value.
 glm::vec3 shadingNormal(const SurfacePoint& point);
+
+// The vector pass's colour of a point: its frameMotion's half for the mode, z 0.
+glm::vec3 vectorOf(ShadingMode mode, const SurfacePoint& point);
 
 // The one shading function every CPU method calls, so methods differ only in visibility.
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);

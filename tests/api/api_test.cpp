@@ -3,6 +3,7 @@
 
 #include <streak/streak.h>
 
+#include "support/gltf_samples.h"
 #include "support/shared_scenes.h"
 #include "support/temp_dir.h"
 
@@ -10,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <numbers>
 #include <limits>
 #include <thread>
 
@@ -169,6 +172,66 @@ TEST(Api, CancelStopsEveryMethodAtItsNextProgressStep) {
     }
     sk::RenderSettings settings;
     EXPECT_THROW(sk::Renderer(settings).render(scene, {}, [] { return true; }), streak::Cancelled);
+
+    // The albedo and normal passes are renders of their own: each a third of the progress, and
+    // cancelled as the beauty is.
+    settings.width = 64, settings.height = 48, settings.threads = 1, settings.passes = {"albedo", "normal"};
+    std::vector<double> progress;
+    sk::Renderer(settings).render(scene, [&](double f) { progress.push_back(f); });
+    EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+    EXPECT_DOUBLE_EQ(progress.back(), 1.0);
+    EXPECT_TRUE(std::any_of(progress.begin(), progress.end(), [](double f) { return f > 0.34 && f < 0.66; }));
+    double last = 0.0;
+    EXPECT_THROW(sk::Renderer(settings).render(scene, [&](double f) { last = f; }, [&] { return last > 0.5; }), streak::Cancelled);
+    EXPECT_GT(last, 0.5);
+    EXPECT_LT(last, 0.7);
+}
+
+// The vector pass of a quad turning about the view axis, seen at frame 12 with the shutter shut:
+// at a pixel whose samples all see the quad, the surface point at its centre c (pixels, y up,
+// from the image's centre) is where it was, rotated by -delta, a frame before, and rotated by
+// +delta a frame after: X,Y = R(-delta) c - c and Z,W = c - R(delta) c (Cycles' signs). The
+// samples' mean is the centre's value: the vector is affine in the point, and the n-rooks
+// samples' mean offset is 0.
+TEST(Api, TheVectorPassOfATurningQuadIsItsRotationAcrossFrames) {
+    streak::test::TempDir dir;
+    const std::string path = (dir.path() / "spin.gltf").string();
+    {
+        const std::vector<std::uint8_t> bytes = streak::test::spinningQuad(90.0).gltfBytes();
+        std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    }
+    sk::LoadOptions load;
+    load.frame = 12.0, load.shutterFrames = 0.0, load.fps = 24.0, load.width = 64, load.height = 48;
+    const sk::Scene scene = sk::Scene::load(path, load);
+    sk::RenderSettings settings;
+    settings.method = "analytic", settings.width = 64, settings.height = 48, settings.aa = 4, settings.transparent = true;
+    settings.passes = {"vector"};
+    const sk::Image image = sk::render(scene, settings).image;
+    const double delta = 90.0 / 24.0 * std::numbers::pi / 180.0;  // the quad turns 90 degrees in 24 frames
+    auto channel = [&](const char* name) -> const std::vector<float>& { return image.channel(name)->values; };
+    int checked = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const std::size_t i = std::size_t(y) * 64 + std::size_t(x);
+            if (image.alpha[i] < 1.0f) continue;
+            const double cx = x + 0.5 - 32.0, cy = 24.0 - (y + 0.5);
+            auto turned = [&](double a) { return std::pair{cx * std::cos(a) - cy * std::sin(a), cx * std::sin(a) + cy * std::cos(a)}; };
+            const auto [bx, by] = turned(-delta);
+            const auto [ax, ay] = turned(delta);
+            EXPECT_NEAR(channel("vector.X")[i], bx - cx, 2e-3) << x << "," << y;
+            EXPECT_NEAR(channel("vector.Y")[i], by - cy, 2e-3) << x << "," << y;
+            EXPECT_NEAR(channel("vector.Z")[i], cx - ax, 2e-3) << x << "," << y;
+            EXPECT_NEAR(channel("vector.W")[i], cy - ay, 2e-3) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 150);
+    // Nothing shows, no vector.
+    EXPECT_EQ(channel("vector.X")[0], 0.0f);
+
+    // A scene without frames, and the GL twins, refuse it in one line.
+    EXPECT_THROW(sk::render(sk::Scene::load("builtin:spin"), settings), streak::Error);
+    settings.method = "motion-path-gl";
+    EXPECT_THROW(sk::Renderer{settings}, streak::Error);
 }
 
 // The arrays' names are the Cryptomatte names of their meshes and materials.

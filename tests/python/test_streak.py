@@ -201,6 +201,7 @@ class RenderTest(unittest.TestCase):
         np.testing.assert_allclose(out["image"][1, :, 0], 0.5 * expected + (1 - expected), atol=2e-4)
         np.testing.assert_allclose(out["image"][1, :, 1], 0.5 * expected, atol=2e-4)
         manifests = " ".join(v for k, v in out["metadata"].items() if k.endswith("manifest"))
+        self.assertEqual(out["metadata"][f"cryptomatte/{streak.cryptomatte_key('CryptoObject')}/name"], "CryptoObject")
         for name in ("Sweeper", "Wall", "Red", "Grey"):
             self.assertIn(f'"{name}"', manifests)
         with self.assertRaisesRegex(streak.Error, r"meshes\[0\]: unknown key 'colour'"):

@@ -58,10 +58,17 @@ inline void expectAlphaIsCoverage(const std::string& method, const OptionMap& op
             const float alpha = over.alphaAt(px, py);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(transparent.at(px, py)[c], black.at(px, py)[c], 2e-5f);
             const glm::vec3 own = black.at(px, py);
-            if (py <= 3) EXPECT_NEAR(alpha, own.y, 2e-5f);
-            else EXPECT_NEAR(alpha, own.x, 2e-5f);  // the pane is red 1: its red over black is its coverage
-            if (py == 4) EXPECT_EQ(alpha, 0.0f);
-            if (closedFormTolerance >= 0.0f) EXPECT_NEAR(alpha, AlphaScene::coverage(px, py), closedFormTolerance);
+            if (py <= 3) {
+                EXPECT_NEAR(alpha, own.y, 2e-5f);
+            } else {
+                EXPECT_NEAR(alpha, own.x, 2e-5f);  // the pane is red 1: its red over black is its coverage
+            }
+            if (py == 4) {
+                EXPECT_EQ(alpha, 0.0f);
+            }
+            if (closedFormTolerance >= 0.0f) {
+                EXPECT_NEAR(alpha, AlphaScene::coverage(px, py), closedFormTolerance);
+            }
         }
 }
 
