@@ -73,8 +73,8 @@ struct PassChannel {
 
 // A pass that is the same visibility shaded another way (a render of the method again, with the
 // same samples), over a transparent background: the albedo (unlit), the normal, or one half of
-// the vector. Each pixel's coverage-weighted value, premultiplied as the colour is, into the
-// channels layer.<name>, one per colour component. Timed as "<layer> render" (the vector's two
+// the vector. Each pixel's coverage-weighted value, premultiplied as the colour is (the vector:
+// divided by the coverage), into the channels layer.<name>, one per colour component. Timed as "<layer> render" (the vector's two
 // renders add up there).
 void addShadedPass(streak::Renderer& method, const streak::RenderSettings& settings, ShadingMode mode, const char* layer,
                    std::initializer_list<PassChannel> channels, const std::string& methodName, const streak::Scene& scene, streak::Image& image,
@@ -94,8 +94,11 @@ void addShadedPass(streak::Renderer& method, const streak::RenderSettings& setti
         std::vector<float> values(pass.pixels().size());
         for (std::size_t i = 0; i < values.size(); ++i) {
             // Normals and vectors may be negative: the background's share is taken out without clamping.
-            const float background = isSigned ? scene.background[c] * (1.0f - pass.alpha()[i]) : 0.0f;
+            const float alpha = pass.alpha()[i], background = isSigned ? scene.background[c] * (1.0f - alpha) : 0.0f;
             values[i] = channel.scale * (pass.pixels()[i][c] - background);
+            // The vector is the mean motion of what shows, not premultiplied: Cycles divides its
+            // motion pass by its weight, and Vector Blur reads it so at edges.
+            if (isVectorPass(mode)) values[i] = alpha > 0.0f ? values[i] / alpha : 0.0f;
         }
         image.addChannel(std::string(layer) + "." + channel.name, std::move(values));
         ++c;
@@ -175,6 +178,8 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     }
     if (m_impl->vector && isGlMethod(settings.method))
         throw Error("method " + settings.method + " does not write the vector pass: its shaders have no frame motion (the CPU methods write it)");
+    if (m_impl->vector && m_impl->method->animationTrail())
+        throw Error("method " + settings.method + " draws a trail, which has no frames around a shutter: the vector pass is the shutter methods'");
     if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
         throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
     s.passes.cryptoRanks = settings.cryptomatteRanks;

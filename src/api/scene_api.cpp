@@ -227,30 +227,38 @@ streak::Scene Scene::Impl::withFrameMotion(float aspect) const {
     streak::Scene out = scene;
     FrameMotion motion;
     for (int k = 0; k < 3; ++k) {
-        // The scene standing still at frame F - 1, F or F + 1.
+        // The scene standing still at frame F - 1, F or F + 1, from the main load's options but
+        // for the shutter and motion ones; velocities move vertices from where they are at F,
+        // as the main load's do (a held file of a sequence keeps its vertices).
         LoadOptions o = main;
-        o.frame = main.frame + double(k - 1);
-        o.shutterFrames = 0.0, o.shutterPosition = "start", o.motionKeys = 2, o.motionCurve = "linear";
-        if (main.lookAt && main.lookAt->positionEnd) {
+        o.shutterFrames = 0.0, o.motionKeys = 2, o.motionCurve = "linear";
+        o.motionCurveOrder = LoadOptions().motionCurveOrder, o.motionFitSamples = LoadOptions().motionFitSamples;
+        const double frame = main.frame + double(k - 1);
+        if (main.lookAt && (main.lookAt->positionEnd || main.lookAt->targetEnd)) {
             // An explicit camera moving over the shutter keeps moving at its pace past it.
-            const double u = main.shutterFrames > 0.0 ? (o.frame - open) / main.shutterFrames : 0.0;
+            const double u = main.shutterFrames > 0.0 ? (frame - open) / main.shutterFrames : 0.0;
+            const LookAt& from = *main.lookAt;
             LookAt& look = *o.lookAt;
             for (int c = 0; c < 3; ++c) {
-                look.position[c] += float(u) * ((*main.lookAt->positionEnd)[c] - main.lookAt->position[c]);
-                look.target[c] += float(u) * (main.lookAt->targetEnd.value_or(main.lookAt->target)[c] - main.lookAt->target[c]);
+                look.position[c] += float(u) * (from.positionEnd.value_or(from.position)[c] - from.position[c]);
+                look.target[c] += float(u) * (from.targetEnd.value_or(from.target)[c] - from.target[c]);
             }
             look.positionEnd.reset(), look.targetEnd.reset();
         }
-        const Scene at = Scene::load(spec, o);
-        const streak::Scene& still = at.impl().scene;
-        if (still.meshes.size() != scene.meshes.size())
-            throw Error("the vector pass: frame " + numberList({o.frame}) + " has " + std::to_string(still.meshes.size()) + " meshes, the frame's scene " +
-                        std::to_string(scene.meshes.size()));
+        GltfOptions gltf = gltfOptionsOf(o);
+        gltf.frame = frame;
+        gltf.velocityFrame = main.frame;
+        const streak::Scene still = loadScene(spec, gltf);
+        // validateScene dropped the main scene's empty meshes (and kept the others in order, with
+        // their vertices): each main mesh is the next still one of its name and vertex count. A
+        // still mesh is not validated, so one scaled to nothing at F - 1 still matches.
+        std::size_t next = 0;
         for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
             const streak::Mesh& mesh = scene.meshes[m];
-            if (still.meshes[m].name != mesh.name || still.meshes[m].numVertices() != mesh.numVertices())
-                throw Error("the vector pass: mesh '" + mesh.name + "' changes its vertices at frame " + numberList({o.frame}));
-            const std::span<const glm::vec3> positions = still.meshes[m].keyPositions(0);
+            while (next < still.meshes.size() && (still.meshes[next].name != mesh.name || still.meshes[next].numVertices() != mesh.numVertices())) ++next;
+            if (next == still.meshes.size())
+                throw Error("the vector pass: mesh '" + mesh.name + "' has other vertices at frame " + numberList({frame}) + " (its topology changes)");
+            const std::span<const glm::vec3> positions = still.meshes[next++].keyPositions(0);
             out.meshes[m].framePositions[std::size_t(k)].assign(positions.begin(), positions.end());
         }
         // A framed scene (no camera given) keeps the frame's framing; a camera of the file's

@@ -258,6 +258,16 @@ class Addon(unittest.TestCase):
             self.assertLess(rms, 0.05)
             self.assertLess(abs(float(x.mean() - y.mean())), 0.01)
             self.assertGreater(float(np.abs(y).max()), 3.0)  # the scene moves by pixels a frame
+        # At silhouettes too: the vector is the mean motion of what shows, not premultiplied by
+        # its coverage, as Cycles divides its motion by its weight (premultiplied, a half-covered
+        # pixel moving 10 px would read 5).
+        edge = (a["image"][..., 3] > 0.05) & (b["ViewLayer.Combined.A"] > 0.05) & ~inside
+        self.assertGreater(int(edge.sum()), 100)
+        for channel in "XYZW":
+            d = a[f"vector.{channel}"][edge] - b[f"ViewLayer.Vector.{channel}"][edge]
+            print(f"vector.{channel} at edges: median difference {np.median(np.abs(d)):.4f} px, RMS {np.sqrt((d ** 2).mean()):.4f} px")
+            self.assertLess(float(np.median(np.abs(d))), 0.02)
+            self.assertLess(float(np.sqrt((d ** 2).mean())), 0.15)
 
     def test_changing_topology_moves_from_the_frame(self):
         # Shutter [5, 5.5] (Start on Frame): a sphere whose faces grow, with a velocity of one unit
