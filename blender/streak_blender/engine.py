@@ -115,12 +115,11 @@ class StreakRenderEngine(bpy.types.RenderEngine):
             for flag, name, channels, _, _, _, names in _PASSES:
                 if getattr(view_layer, flag) and name in layer.passes:
                     layer.passes[name].rect = _rows_up(np.stack([layers[c] for c in names], axis=-1))
-            for flag, name, kind in _CRYPTO:
+            for flag, name, _ in _CRYPTO:
                 if not getattr(view_layer, flag):
                     continue
-                prefix = "CryptoObject" if kind == "object_id" else "CryptoMaterial"
                 for i in range(_crypto_layers(view_layer)):
-                    channels = [f"{prefix}{i:02d}.{c}" for c in "rgba"]
+                    channels = [f"{name}{i:02d}.{c}" for c in "rgba"]  # streak's layer has Blender's pass name
                     pass_name = f"{name}{i:02d}"
                     if pass_name in layer.passes and channels[0] in layers:
                         layer.passes[pass_name].rect = _rows_up(np.stack([layers[c] for c in channels], axis=-1))

@@ -413,20 +413,19 @@ def build(engine, depsgraph, settings, height):
     materials = Materials(report)
     meshes = []
     for key in reference:
-        name = reference[key].name
+        at_frame = reference[key]  # its triangles, uvs and slots: the same in every key, or held from the frame
+        name = at_frame.name
         poses = [poses_k.get(key) for poses_k, _ in snaps]
-        changes = any(p is None or p.signature != reference[key].signature for p in poses)
+        changes = any(p is None or p.signature != at_frame.signature for p in poses)
         if changes:
             report.topology_changes.append(name)
             # Stand still at the frame, or move along the velocity (units per second) from there.
-            base = reference[key]
-            if base.velocity is not None:
+            if at_frame.velocity is not None:
                 report.moved_by_velocity.append(name)
-                positions = [base.positions + base.velocity * ((t - frame_time) / fps) for t in times]
+                positions = [at_frame.positions + at_frame.velocity * ((t - frame_time) / fps) for t in times]
             else:
-                positions = [base.positions for _ in times]
-            normals = [base.normals for _ in times]
-            poses = [base] * len(times)
+                positions = [at_frame.positions for _ in times]
+            normals = [at_frame.normals for _ in times]
         else:
             positions = [p.positions for p in poses]
             normals = [p.normals for p in poses]
@@ -435,22 +434,21 @@ def build(engine, depsgraph, settings, height):
             zoom = [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in cameras]
             positions = [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in zip(cameras, positions, zoom)]
             normals = [n @ c.rotation for c, n in zip(cameras, normals)]
-        first = poses[len(poses) // 2]
-        slots = first.slots
-        for slot in np.unique(first.material_index):
-            tris = np.nonzero(first.material_index == slot)[0]
+        slots = at_frame.slots
+        for slot in np.unique(at_frame.material_index):
+            tris = np.nonzero(at_frame.material_index == slot)[0]
             corners = (tris[:, None] * 3 + np.arange(3)[None, :]).reshape(-1)
             material = slots[slot] if 0 <= slot < len(slots) else None
             indices = np.arange(len(corners), dtype=np.int64).reshape(-1, 3)
-            if first.mirrored:
+            if at_frame.mirrored:
                 indices = indices[:, ::-1]
             mesh = {"keys": np.stack([p[corners] for p in positions]).astype(np.float32),
                     "indices": indices,
                     "normals": np.stack([n[corners] for n in normals]).astype(np.float32),
                     "material": materials.index(material),
                     "name": name}
-            if first.uvs is not None:
-                mesh["uvs"] = first.uvs[corners]
+            if at_frame.uvs is not None:
+                mesh["uvs"] = at_frame.uvs[corners]
             meshes.append(mesh)
             report.triangles += len(tris)
         report.objects += 1

@@ -74,8 +74,8 @@ struct PassChannel {
 // A pass that is the same visibility shaded another way (a render of the method again, with the
 // same samples), over a transparent background: the albedo (unlit), the normal, or one half of
 // the vector. Each pixel's coverage-weighted value, premultiplied as the colour is (the vector:
-// divided by the coverage), into the channels layer.<name>, one per colour component. Timed as "<layer> render" (the vector's two
-// renders add up there).
+// divided by the coverage), into the channels layer.<name>, one per colour component. Timed as
+// "<layer> render" (the vector's two renders add up there).
 void addShadedPass(streak::Renderer& method, const streak::RenderSettings& settings, ShadingMode mode, const char* layer,
                    std::initializer_list<PassChannel> channels, const std::string& methodName, const streak::Scene& scene, streak::Image& image,
                    RenderStats& stats, ProgressReporter* progress) {

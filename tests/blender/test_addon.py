@@ -51,13 +51,15 @@ def render_addon(path, multilayer=False, **settings):
 
 
 def render_gltf(path, *flags):
-    """The same scene through Blender's glTF exporter and streak's command line."""
+    """The same scene through Blender's glTF exporter and streak's command line, under the
+    scene's motion blur (shut when it is off)."""
     glb = os.path.join(TMP, "scene.glb")
     bpy.ops.export_scene.gltf(filepath=glb, export_format="GLB", export_cameras=True, export_animations=True,
                               export_nla_strips=False)
     scene = bpy.context.scene
+    shutter = scene.render.motion_blur_shutter if scene.render.use_motion_blur else 0.0
     subprocess.run([CLI, "render", glb, "--camera", "0", "--frame", str(scene.frame_current), "--fps", str(scene.render.fps),
-                    "--shutter", str(scene.render.motion_blur_shutter), "--shutter-position", scene.cycles.motion_blur_position.lower(),
+                    "--shutter", str(shutter), "--shutter-position", scene.cycles.motion_blur_position.lower(),
                     "--width", str(scene_builder.WIDTH), "--height", str(scene_builder.HEIGHT), "--aa", "4", "--shading", "unlit",
                     "--transparent", "-o", path, *flags], check=True, stdout=subprocess.DEVNULL)
 
@@ -239,12 +241,8 @@ class Addon(unittest.TestCase):
         # turning, bending objects. Where both see a surface over the whole pixel, the vectors agree.
         scene = bpy.context.scene
         scene.render.use_motion_blur = False
-        glb = os.path.join(TMP, "vector.glb")
-        bpy.ops.export_scene.gltf(filepath=glb, export_format="GLB", export_cameras=True, export_animations=True, export_nla_strips=False)
         ours = os.path.join(TMP, "vector_streak.exr")
-        subprocess.run([CLI, "render", glb, "--camera", "0", "--frame", str(scene.frame_current), "--fps", str(scene.render.fps), "--shutter", "0",
-                        "--width", str(scene_builder.WIDTH), "--height", str(scene_builder.HEIGHT), "--aa", "4", "--shading", "unlit",
-                        "--transparent", "--passes", "vector", "-o", ours], check=True, stdout=subprocess.DEVNULL)
+        render_gltf(ours, "--passes", "vector")
         scene.view_layers[0].use_pass_vector = True
         render_cycles(os.path.join(TMP, "vector_cycles.exr"), 16, multilayer=True)
         a, b = streak.read_layers(ours), streak.read_layers(os.path.join(TMP, "vector_cycles.exr"))
