@@ -10,10 +10,11 @@ packages=(
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libtinygltf-dev libtinyobjloader-dev libembree-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
-  python3-matplotlib python3-dev python3-pybind11 python3-numpy
+  python3-matplotlib python3-dev python3-pybind11 python3-numpy python3-openimageio
   parallel
   blender
 )
+# OpenImageIO's Python reads the deep EXRs back in the tests, as a compositor would.
 # Blender (Debian's, Python 3.11 as the streak module's) runs the add-on's tests
 # (tests/blender) and the Cycles ground truth of bench/cycles_reference.py.
 

@@ -174,6 +174,8 @@ struct RenderArgs {
     bool transparent = false;
     std::string passes;  ///< comma-separated
     int cryptomatteRanks = 6;
+    std::optional<std::string> deep;  ///< --deep FILE.exr
+    int deepSamples = 16;
     std::string shading = "phong";
     std::optional<std::string> background;
     std::uint64_t seed = 0;
@@ -376,6 +378,9 @@ int runRender(const RenderArgs& args) {
     settings.cryptomatteRanks = args.cryptomatteRanks;
     if (!settings.passes.empty() && lowercaseExtension(args.output) != ".exr")
         throw Error("--passes are written to EXR: -o " + args.output + " is not an .exr");
+    if (args.deep && lowercaseExtension(*args.deep) != ".exr") throw Error("--deep writes a deep EXR: " + *args.deep + " is not an .exr");
+    settings.deep = args.deep.has_value();
+    settings.deepSamples = args.deepSamples;
     settings.unlit = args.shading == "unlit";
     settings.seed = args.seed;
     settings.threads = args.threads;
@@ -404,11 +409,16 @@ int runRender(const RenderArgs& args) {
         if (sk::isSceneFile(args.scene)) checkTrailFlags(args, "method " + args.method);
     }
     const FrameList list = frameList(args);
-    std::vector<std::string> outputs, statsPaths;
+    std::vector<std::string> outputs, statsPaths, deepPaths;
     const bool isStatsPerFrame = args.stats.find('%') != std::string::npos;
     for (const double frame : list.frames) {
         outputs.push_back(framePath(args.output, frame, list.isSequence, "-o"));
         checkWritable(outputs.back(), true);
+        if (args.deep) {
+            deepPaths.push_back(framePath(*args.deep, frame, list.isSequence, "--deep"));
+            checkWritable(deepPaths.back(), true);
+            if (deepPaths.back() == outputs.back()) throw Error("--deep " + deepPaths.back() + " is the -o image: the deep image is a file of its own");
+        }
         if (isStatsPerFrame) {
             statsPaths.push_back(framePath(args.stats, frame, list.isSequence, "--stats"));
             checkWritable(statsPaths.back(), false);
@@ -444,6 +454,14 @@ int runRender(const RenderArgs& args) {
             stats.counters["repeat"] = args.repeat;
             if (list.isSequence) stats.counters["frame"] = list.frames[f];
             writeAccepted([&] { sk::writeImage(result.image, outputs[f]); });
+            if (result.deep) {
+                try {
+                    writeAccepted([&] { sk::writeDeepImage(*result.deep, deepPaths[f]); });
+                } catch (const Error&) {
+                    std::filesystem::remove(outputs[f]);  // all or nothing, per frame
+                    throw;
+                }
+            }
             stats.timesMs.emplace_back("total", std::chrono::duration<double, std::milli>(Clock::now() - start).count());
             if (isStatsPerFrame) {
                 try {
@@ -633,6 +651,14 @@ int run(int argc, char** argv) {
                        "vector (vector.X/Y/Z/W, Blender's Vector: screen motion in pixels to the frame before and from the frame after; "
                        "CPU methods, scenes with frames, two more renders)");
     render->add_option("--cryptomatte-ranks", renderArgs.cryptomatteRanks, "Cryptomatte (ID, coverage) pairs kept per pixel")->capture_default_str();
+    render->add_option("--deep", renderArgs.deep,
+                       "also write a deep scanline EXR (R G B A Z ZBack, what Nuke's DeepRead takes) to this .exr: per pixel a sample per "
+                       "visible surface layer, from the nearest depth it shows at to the farthest, compositing front to back to the image's RGBA "
+                       "(the background's sample at Z 1e10 unless --transparent); motion-path, analytic, higher-order exact, embree sampled. "
+                       "With --frames, a pattern as -o");
+    render->add_option("--deep-samples", renderArgs.deepSamples,
+                       "deep samples (surface layers) kept per pixel; the closest in depth are joined past it (deep_layers_merged in --stats)")
+        ->capture_default_str();
     render->add_flag("--transparent", renderArgs.transparent,
                      "transparent background (Blender's Film > Transparent): RGBA, alpha the exact coverage; EXR premultiplied, PNG straight");
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();

@@ -5,6 +5,7 @@
 #include "streak/error.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -40,6 +41,26 @@ struct Image {
     bool isRegion() const { return frameWidth > 0; }
     float at(int x, int y, int channel) const { return rgb[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(channel)]; }
 };
+
+// A deep image (RenderSettings::deep): per pixel, its visible surface layers front to back as
+// deep samples, each lying from view depth z to zBack, with alpha a and colour premultiplied
+// by it. Tidy (sorted, none overlapping), so compositing a pixel's samples front to back, each
+// over what lies behind (OpenEXR's "Interpreting Deep Pixels"), gives the render's RGBA.
+struct DeepImage {
+    struct Sample {
+        float z = 0.0f, zBack = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f, a = 0.0f;
+    };
+    int width = 0, height = 0;
+    std::vector<std::uint32_t> counts;  ///< width x height: each pixel's number of samples
+    std::vector<Sample> samples;        ///< pixel by pixel (row-major, top row first), front to back
+    // Placed in a frame as Image is (a region render).
+    int x = 0, y = 0, frameWidth = 0, frameHeight = 0;
+    bool isRegion() const { return frameWidth > 0; }
+};
+// A deep scanline EXR (R G B A Z ZBack, 32-bit float, ZIPS, deepImageState tidy: what Nuke's
+// DeepRead takes); a failed write leaves nothing. Throws Error unless the path ends in .exr.
+void writeDeepImage(const DeepImage& image, const std::string& path);
+DeepImage readDeepImage(const std::string& path);
 
 // PNG (sRGB 8-bit) or EXR (linear float) by the extension; a failed write leaves nothing. With
 // alpha, RGBA: PNG's colour straight (divided by alpha), EXR's premultiplied.

@@ -72,6 +72,17 @@ struct RenderSettings {
     // by two more renders.
     std::vector<std::string> passes;
     int cryptomatteRanks = 6;
+    // A deep image beside the colour (RenderResult::deep): per pixel, what shows as deep
+    // samples, one per surface layer (the surfaces of one object over overlapping depths), from
+    // the nearest depth at which it shows over the shutter to the farthest. A moving surface's
+    // alpha is its exposure: the samples' alphas are chosen so that compositing them front to
+    // back gives the render's colour and alpha exactly. At most deepSamples layers per pixel
+    // (the closest in depth are joined past it; counted in the stats as deep_layers_merged),
+    // and, without a transparent background, the background's sample behind them at z 1e10.
+    // Written by motion-path, analytic and higher-order (exact) and embree (sampled: a layer
+    // per surface its rays hit), refused by the others.
+    bool deep = false;
+    int deepSamples = 16;
     bool sampleGrid = false;
     bool unlit = false;
     std::uint64_t seed = 0;
@@ -92,6 +103,7 @@ struct Stats {
 struct RenderResult {
     Image image;
     Stats stats;
+    std::optional<DeepImage> deep;  ///< with RenderSettings::deep
 };
 
 // A method set up for one kind of image, kept between renders: a sequence of frames, or the

@@ -7,6 +7,7 @@
 #include "streak/render.h"
 #include "streak/scene.h"
 
+#include "image/deep_image.h"
 #include "image/image.h"
 #include "scene/scene.h"
 #include "util/stats.h"
@@ -52,5 +53,6 @@ std::string numberList(std::initializer_list<double> values);
 
 Image imageOf(const streak::Image& in);
 streak::Image imageOf(const Image& in);
+DeepImage deepImageOf(const streak::DeepImage& in);
 
 }  // namespace streak::api

@@ -43,6 +43,48 @@ streak::Image imageOf(const Image& in) {
     return out;
 }
 
+DeepImage deepImageOf(const streak::DeepImage& in) {
+    DeepImage out;
+    out.width = in.width(), out.height = in.height();
+    const std::span<const std::uint64_t> offsets = in.offsets();
+    out.counts.reserve(offsets.size() - 1);
+    for (std::size_t i = 0; i + 1 < offsets.size(); ++i) out.counts.push_back(std::uint32_t(offsets[i + 1] - offsets[i]));
+    out.samples.reserve(in.numSamples());
+    for (const DeepSample& s : in.allSamples()) out.samples.push_back({s.z, s.zBack, s.color.x, s.color.y, s.color.z, s.alpha});
+    if (const std::optional<FramePlacement>& p = in.placement()) out.x = p->x, out.y = p->y, out.frameWidth = p->frameWidth, out.frameHeight = p->frameHeight;
+    return out;
+}
+
+namespace {
+
+streak::DeepImage deepImageOf(const DeepImage& in) {
+    if (in.width <= 0 || in.height <= 0 || in.counts.size() != std::size_t(in.width) * std::size_t(in.height))
+        throw Error("deep image: counts must be width x height");
+    std::vector<std::vector<DeepSample>> perPixel(in.counts.size());
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < in.counts.size(); ++i) {
+        if (in.counts[i] > in.samples.size() - next) throw Error("deep image: the counts add up to more samples than it holds");
+        for (std::uint32_t k = 0; k < in.counts[i]; ++k, ++next) {
+            const DeepImage::Sample& s = in.samples[next];
+            perPixel[i].push_back({s.z, s.zBack, glm::vec3(s.r, s.g, s.b), s.a});
+        }
+    }
+    if (next != in.samples.size()) throw Error("deep image: the counts add up to fewer samples than it holds");
+    streak::DeepImage out(in.width, in.height);
+    out.assign(perPixel);
+    if (in.isRegion()) {
+        if (in.x < 0 || in.y < 0 || in.x + in.width > in.frameWidth || in.y + in.height > in.frameHeight)
+            throw Error("deep image: its region does not lie inside its frame");
+        out.place({in.x, in.y, in.frameWidth, in.frameHeight});
+    }
+    return out;
+}
+
+}  // namespace
+
+void writeDeepImage(const DeepImage& image, const std::string& path) { streak::writeDeepImage(deepImageOf(image), path); }
+DeepImage readDeepImage(const std::string& path) { return deepImageOf(streak::readDeepImage(path)); }
+
 Image stitch(const std::vector<Image>& regions) {
     if (regions.empty()) throw Error("stitch: no regions");
     // A whole frame is the region that covers it (a --region of the whole image reads back so).

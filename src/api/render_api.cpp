@@ -183,9 +183,14 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (settings.cryptomatteRanks < 1 || settings.cryptomatteRanks > 64)
         throw Error("render: cryptomatteRanks must be in [1, 64], got " + std::to_string(settings.cryptomatteRanks));
     s.passes.cryptoRanks = settings.cryptomatteRanks;
+    if (settings.deepSamples < 1 || settings.deepSamples > 1024)
+        throw Error("render: deepSamples must be in [1, 1024], got " + std::to_string(settings.deepSamples));
+    s.passes.deep = settings.deep;
+    s.passes.deepSamples = settings.deepSamples;
+    s.passes.deepBackground = !settings.transparent;
     if (s.passes.any() && !m_impl->method->writesPasses())
-        throw Error("method " + settings.method + " does not write the depth and Cryptomatte passes (" +
-                    std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : "material_id") +
+        throw Error("method " + settings.method + " does not write the depth, Cryptomatte and deep passes (" +
+                    std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : s.passes.materialId ? "material_id" : "deep") +
                     "): motion-path, analytic and higher-order write them exactly, embree sampled");
 }
 
@@ -214,6 +219,7 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
     stats.setCounter("aa", settings.aa);
     stats.setCounter("sample_grid", settings.sampleGrid ? 1 : 0);
     stats.setCounter("transparent", settings.transparent ? 1 : 0);
+    stats.setCounter("deep", settings.deep ? 1 : 0);
     if (!settings.passes.empty()) {
         std::string passes;
         for (const std::string& p : settings.passes) passes += (passes.empty() ? "" : ",") + p;
@@ -270,7 +276,12 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
                           image, stats, nextStage());
         }
         const std::optional<Region>& r = settings.region;
-        result.image = imageOf(r ? image.region(r->x0, r->y0, r->x1, r->y1) : image);
+        if (r) image = image.region(r->x0, r->y0, r->x1, r->y1);
+        result.image = imageOf(image);
+        if (settings.deep) {
+            if (!image.deep()) throw RenderFailure("method " + settings.method + " gave no deep image");
+            result.deep = deepImageOf(*image.deep());
+        }
     }
     if (const std::optional<Region>& r = settings.region)
         stats.setInfo("region", std::to_string(r->x0) + "," + std::to_string(r->y0) + "," + std::to_string(r->x1) + "," + std::to_string(r->y1));

@@ -96,16 +96,21 @@ public:
 
     // Shades the pixel's pieces with shade(triangle, t0, t1, ShadingSite) -> ShadedColor and adds
     // each piece's colour times its weight to colors[its sample], in each sample's own order of
-    // pieces (so a colour that does not depend on the site gives each sample the same sum).
-    template <class Shade>
-    void finish(const PixelShadingOptions& options, Shade&& shade, std::span<glm::vec3> colors, PixelShadingCounters& counters) {
+    // pieces (so a colour that does not depend on the site gives each sample the same sum), and
+    // tells added(triangle, that colour) (the deep image keeps each surface's colour).
+    template <class Shade, class Added = void (*)(std::uint32_t, const glm::vec3&)>
+    void finish(const PixelShadingOptions& options, Shade&& shade, std::span<glm::vec3> colors, PixelShadingCounters& counters,
+                Added&& added = [](std::uint32_t, const glm::vec3&) {}) {
         if (m_pending.empty()) return;
         ++counters.pixels;
         counters.pieces += std::int64_t(m_pending.size());
         if (options.rate == ShadingRate::Sample) {
-            for (const Pending& p : m_pending)
-                colors[p.sample] += shade(p.piece.triangle, p.piece.t0, p.piece.t1, sampleSite(m_ndc[p.sample], m_samplesPerAxis)).color *
-                                    p.piece.weight;
+            for (const Pending& p : m_pending) {
+                const glm::vec3 color =
+                    shade(p.piece.triangle, p.piece.t0, p.piece.t1, sampleSite(m_ndc[p.sample], m_samplesPerAxis)).color * p.piece.weight;
+                colors[p.sample] += color;
+                added(p.piece.triangle, color);
+            }
             counters.shadedSpans += std::int64_t(m_pending.size());
             counters.visibleTriangles += countTriangles();
             return;
@@ -125,6 +130,7 @@ public:
             for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
                 const Pending& p = m_pending[m_order[k]];
                 colors[p.sample] += color * p.piece.weight;
+                added(p.piece.triangle, color * p.piece.weight);
             }
             counters.visibleTriangles += cluster.triangle != lastTriangle;
             lastTriangle = cluster.triangle;

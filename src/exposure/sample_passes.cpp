@@ -3,6 +3,7 @@
 #include "image/cryptomatte.h"
 
 #include <algorithm>
+#include <numeric>
 #include <string>
 
 namespace streak::exposure {
@@ -54,8 +55,9 @@ void writeCryptomatte(Image& image, const char* type, const std::vector<float>& 
 }  // namespace
 
 PassFrame::PassFrame(const Scene& scene, const PassRequest& request, int width, int height)
-    : m_request(request), m_width(width), m_height(height) {
+    : m_request(request), m_width(width), m_height(height), m_background(scene.background) {
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    if (request.deep) m_deep.resize(pixels);
     if (request.depth) m_depth.assign(pixels, kEmptyDepth), m_nearest.assign(pixels, kEmptyDepth);
     const std::size_t ranks = std::size_t(request.cryptoRanks) * 2;
     if (request.objectId) m_objectRanks.assign(pixels * ranks, 0.0f);
@@ -64,7 +66,16 @@ PassFrame::PassFrame(const Scene& scene, const PassRequest& request, int width, 
     for (const Material& material : scene.materials) m_materialNames.push_back(material.name), m_materialIds.push_back(cryptomatteId(material.name));
 }
 
-void PassFrame::writeTo(Image& image) const {
+void PassFrame::writeTo(Image& image, RenderStats& stats) const {
+    if (m_request.deep) {
+        auto deep = std::make_shared<DeepImage>(m_width, m_height);
+        deep->assign(m_deep);
+        stats.setCounter("deep_samples", double(deep->numSamples()));
+        stats.setCounter("deep_samples_max", double(m_request.deepSamples));
+        stats.setCounter("deep_pixels_merged", double(m_deepMergedPixels.load()));
+        stats.setCounter("deep_layers_merged", double(m_deepMergedLayers.load()));
+        image.setDeep(std::move(deep));
+    }
     if (m_request.depth) {
         image.addChannel("Z", m_depth);
         image.addChannel("Z.min", m_nearest);
@@ -73,18 +84,79 @@ void PassFrame::writeTo(Image& image) const {
     if (m_request.materialId) writeCryptomatte(image, kMaterialType, m_materialRanks, m_request.cryptoRanks, m_materialNames);
 }
 
-void PixelPasses::begin() {
+void PixelPasses::begin(const PassFrame& frame) {
     m_objects.clear(), m_materials.clear();
     m_depthSum = 0.0, m_shareSum = 0.0;
     m_nearest = kEmptyDepth;
+    m_wantsColor = frame.m_request.deep;
+    m_deep.clear();
 }
 
-void PixelPasses::add(std::uint32_t object, std::uint32_t material, float share, float depth, float nearest) {
-    if (!(share > 0.0f)) return;
-    addShare(m_objects, object, share);
-    addShare(m_materials, material, share);
-    m_depthSum += double(share) * double(depth), m_shareSum += double(share);
-    m_nearest = std::min(m_nearest, nearest);
+void PixelPasses::add(const ShownSurface& s) {
+    if (!(s.share > 0.0f)) return;
+    addShare(m_objects, s.object, s.share);
+    addShare(m_materials, s.material, s.share);
+    m_depthSum += double(s.share) * double(s.depth), m_shareSum += double(s.share);
+    m_nearest = std::min(m_nearest, s.nearest);
+    if (m_wantsColor) m_deep.push_back({s.triangle, s.object, s.share, s.nearest, s.farthest, glm::vec3(0.0f)});
+}
+
+void PixelPasses::addColor(std::uint32_t triangle, const glm::vec3& color) {
+    if (m_wantsColor) m_deep.push_back({triangle, ~0u, 0.0f, kEmptyDepth, -kEmptyDepth, color});
+}
+
+int layerDeepSurfaces(std::vector<DeepLayer>& layers, int maxLayers) {
+    std::sort(layers.begin(), layers.end(), [](const DeepLayer& a, const DeepLayer& b) {
+        return a.nearest != b.nearest ? a.nearest < b.nearest : a.farthest < b.farthest;
+    });
+    auto join = [](DeepLayer& into, const DeepLayer& from) {
+        into.share += from.share, into.color += from.color;
+        into.farthest = std::max(into.farthest, from.farthest);
+    };
+    std::size_t n = 0;
+    for (const DeepLayer& layer : layers) {
+        if (n > 0 && (layer.nearest == layers[n - 1].nearest || (layer.object == layers[n - 1].object && layer.nearest <= layers[n - 1].farthest)))
+            join(layers[n - 1], layer);
+        else
+            layers[n++] = layer;
+    }
+    layers.resize(n);
+    int joins = 0;
+    if (maxLayers > 0 && n > std::size_t(maxLayers)) {
+        // Join across the n - maxLayers smallest gaps (ties: the nearer first).
+        std::vector<std::uint32_t> gaps(n - 1);
+        std::iota(gaps.begin(), gaps.end(), 0u);
+        auto gap = [&](std::uint32_t i) { return double(layers[i + 1].nearest) - double(layers[i].farthest); };
+        const std::size_t cuts = n - std::size_t(maxLayers);
+        std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(cuts - 1), gaps.end(), [&](std::uint32_t a, std::uint32_t b) {
+            return gap(a) != gap(b) ? gap(a) < gap(b) : a < b;
+        });
+        std::vector<char> joinsNext(n, 0);
+        for (std::size_t k = 0; k < cuts; ++k) joinsNext[gaps[k]] = 1;
+        std::size_t m = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (i > 0 && joinsNext[i - 1]) join(layers[m - 1], layers[i]);
+            else layers[m++] = layers[i];
+        }
+        layers.resize(m);
+        joins = int(cuts);
+    }
+    for (std::size_t i = 0; i + 1 < layers.size(); ++i) layers[i].farthest = std::min(layers[i].farthest, layers[i + 1].nearest);
+    return joins;
+}
+
+void deepSamplesOf(const std::vector<DeepLayer>& layers, const glm::vec3* background, std::vector<DeepSample>& out) {
+    out.clear();
+    // What the layers in front leave: 1 - their summed shares.
+    double transmittance = 1.0;
+    for (const DeepLayer& layer : layers) {
+        if (!(layer.share > 0.0) || !(transmittance > 1e-9)) continue;
+        const double alpha = std::min(layer.share / transmittance, 1.0);
+        out.push_back({layer.nearest, layer.farthest, glm::vec3(layer.color / transmittance), float(alpha)});
+        transmittance -= layer.share;
+    }
+    // The background takes all that is left, behind everything.
+    if (background && transmittance > 1e-7) out.push_back({kEmptyDepth, kEmptyDepth, *background, 1.0f});
 }
 
 void PixelPasses::finish(PassFrame& frame, int x, int y, float sampleWeight) {
@@ -93,6 +165,29 @@ void PixelPasses::finish(PassFrame& frame, int x, int y, float sampleWeight) {
     if (request.depth) {
         frame.m_depth[pixel] = m_shareSum > 0.0 ? float(m_depthSum / m_shareSum) : kEmptyDepth;
         frame.m_nearest[pixel] = m_nearest;
+    }
+    if (request.deep) {
+        // Each triangle's records (its shares, then its colours) into one surface, then layers.
+        std::sort(m_deep.begin(), m_deep.end(), [](const DeepRecord& a, const DeepRecord& b) { return a.triangle < b.triangle; });
+        std::vector<DeepLayer> layers;
+        for (std::size_t i = 0; i < m_deep.size();) {
+            DeepLayer layer{~0u, 0.0, glm::dvec3(0.0), kEmptyDepth, -kEmptyDepth};
+            std::size_t j = i;
+            for (; j < m_deep.size() && m_deep[j].triangle == m_deep[i].triangle; ++j) {
+                const DeepRecord& r = m_deep[j];
+                if (r.object != ~0u) layer.object = r.object;
+                layer.share += double(r.share) * sampleWeight;
+                layer.color += glm::dvec3(r.color) * double(sampleWeight);
+                layer.nearest = std::min(layer.nearest, r.nearest), layer.farthest = std::max(layer.farthest, r.farthest);
+            }
+            if (layer.share > 0.0) layers.push_back(layer);
+            i = j;
+        }
+        if (const int joins = layerDeepSurfaces(layers, request.deepSamples); joins > 0) {
+            frame.m_deepMergedPixels.fetch_add(1, std::memory_order_relaxed);
+            frame.m_deepMergedLayers.fetch_add(joins, std::memory_order_relaxed);
+        }
+        deepSamplesOf(layers, request.deepBackground ? &frame.m_background : nullptr, frame.m_deep[pixel]);
     }
     const std::size_t stride = std::size_t(request.cryptoRanks) * 2;
     if (request.objectId) writeRanks(m_objects, frame.m_objectIds, sampleWeight, request.cryptoRanks, &frame.m_objectRanks[pixel * stride]);

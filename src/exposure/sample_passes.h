@@ -1,9 +1,14 @@
 #pragma once
 
+#include "image/deep_image.h"
 #include "image/image.h"
 #include "image/passes.h"
 #include "scene/scene.h"
+#include "util/stats.h"
 
+#include <glm/vec3.hpp>
+
+#include <atomic>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -16,6 +21,13 @@ namespace streak::exposure {
 // coverage of an object or material is then the sum of its surfaces' shares over the pixel's
 // samples, weighted as the colour's box filter weighs them; so an object's coverages sum to
 // the alpha, and with the exact methods they are exact, as the colour is.
+//
+// The deep image takes each surface's colour too (its share of the sample's colour, as the
+// beauty sums it): a pixel's surfaces are kept by triangle, then joined into layers along the
+// view depth (DeepLayering), which become its deep samples. Their alphas are chosen so that
+// compositing them front to back gives the pixel's colour and alpha exactly: under motion
+// blur the surfaces of a sample show at different times, side by side in its exposure rather
+// than one over another, and a share s after shares W in front is the alpha s / (1 - W).
 class PassFrame {
 public:
     PassFrame(const Scene& scene, const PassRequest& request, int width, int height);
@@ -23,34 +35,77 @@ public:
     const PassRequest& request() const { return m_request; }
     bool isEmpty() const { return !m_request.any(); }
 
-    // Adds the passes' channels and Cryptomatte metadata to `image` (of the frame's size).
-    void writeTo(Image& image) const;
+    // Adds the passes' channels and Cryptomatte metadata to `image` (of the frame's size), and
+    // the deep image; records what the deep samples' bound merged (deep_* in the stats).
+    void writeTo(Image& image, RenderStats& stats) const;
 
 private:
     friend class PixelPasses;
     PassRequest m_request;
     int m_width = 0, m_height = 0;
+    glm::vec3 m_background{0.0f};
+    std::vector<std::vector<DeepSample>> m_deep;  ///< per pixel, when deep
+    std::atomic<std::int64_t> m_deepMergedPixels{0}, m_deepMergedLayers{0};
     std::vector<float> m_objectIds, m_materialIds;    ///< per scene mesh and material: its Cryptomatte ID
     std::vector<std::string> m_objectNames, m_materialNames;
     std::vector<float> m_depth, m_nearest;            ///< per pixel
     std::vector<float> m_objectRanks, m_materialRanks;  ///< per pixel, ranks x (ID, coverage)
 };
 
-// One thread's running passes of one pixel: begin(), then add() each surface of each sample,
-// then finish() writes the pixel.
+// A surface showing in a sample: triangle `triangle` of mesh `object` and material
+// `material`, its share of the sample, its mean view depth over the time it shows, and the
+// nearest and farthest it gets then.
+struct ShownSurface {
+    std::uint32_t triangle = 0, object = 0, material = 0;
+    float share = 0.0f, depth = 0.0f, nearest = 0.0f, farthest = 0.0f;
+};
+
+// One thread's running passes of one pixel: begin(), then add() each surface of each sample
+// (and, for the deep image, addColor() each colour they add to it), then finish() writes the
+// pixel.
 class PixelPasses {
 public:
-    void begin();
-    // A surface of mesh `object` and material `material` showing in a sample of the pixel: its
-    // share of that sample, its mean view depth over the time it shows and the nearest it gets.
-    void add(std::uint32_t object, std::uint32_t material, float share, float depth, float nearest);
+    void begin(const PassFrame& frame);
+    void add(const ShownSurface& surface);
+    // What triangle `triangle` adds to a sample's colour (its colour times its share), summed
+    // over its pieces; kept only for the deep image.
+    void addColor(std::uint32_t triangle, const glm::vec3& color);
+    bool wantsColor() const { return m_wantsColor; }
     // Writes the pixel: each sample weighs sampleWeight (1 / samples for the box filter).
     void finish(PassFrame& frame, int x, int y, float sampleWeight);
 
 private:
+    struct DeepRecord {
+        std::uint32_t triangle = 0, object = 0;
+        float share = 0.0f, nearest = 0.0f, farthest = 0.0f;
+        glm::vec3 color{0.0f};
+    };
     std::vector<std::pair<std::uint32_t, float>> m_objects, m_materials;  ///< index, summed share
     double m_depthSum = 0.0, m_shareSum = 0.0;
     float m_nearest = kEmptyDepth;
+    bool m_wantsColor = false;  ///< the frame is deep
+    std::vector<DeepRecord> m_deep;
 };
+
+// A pixel's surfaces joined into deep layers. Each `Layer` is its surfaces' summed share of the
+// pixel and colour, from the nearest depth to the farthest they show at.
+//  - Surfaces of one object whose depth ranges overlap are one layer (a smooth surface seen over
+//    several triangles), as are surfaces whose nearest depths are equal (no order between them);
+//  - past `maxLayers`, the layers with the smallest depth gaps between them are joined (the
+//    count of joins is returned) until maxLayers remain;
+//  - then each layer's far end is held to the next one's near (tidy: none overlap).
+struct DeepLayer {
+    std::uint32_t object = 0;
+    double share = 0.0;
+    glm::dvec3 color{0.0};
+    float nearest = 0.0f, farthest = 0.0f;
+};
+int layerDeepSurfaces(std::vector<DeepLayer>& layers, int maxLayers);
+
+// The deep samples of a pixel's layers (layerDeepSurfaces' output, front to back), and of the
+// background behind them (its colour, at depth kEmptyDepth) when `background` is given: alphas
+// and premultiplied colours such that compositing them front to back, each over what is behind,
+// gives the summed colour and the summed share as alpha.
+void deepSamplesOf(const std::vector<DeepLayer>& layers, const glm::vec3* background, std::vector<DeepSample>& out);
 
 }  // namespace streak::exposure

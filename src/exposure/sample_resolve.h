@@ -122,23 +122,34 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     return sum;
 }
 
-// Calls show(source, share, depth, nearest) for what shows in the sample resolveSample last
-// resolved from `list`: each span where an opaque interval is the nearest, at its mean depth
-// over the span (linear: the middle's) and the nearer of its ends'; or, resolved with
-// translucency, each interval with a share, at its mean depth and its nearer end's (the resolve
-// keeps no spans there). The shares sum to the sample's coverage.
+// Calls show(source, share, depth, nearest, farthest) for what shows in the sample
+// resolveSample last resolved from `list`: each span where an opaque interval is the nearest,
+// at its mean depth over the span (linear: the middle's) and its ends'; or, resolved with
+// translucency, each interval with a share, at its mean depth and its ends' (the resolve keeps
+// no spans there). The shares sum to the sample's coverage.
 template <class Show>
 void forEachShownSurface(const std::vector<ExposureInterval>& list, const SampleResolveScratch& scratch, Show&& show) {
     if (scratch.wasTranslucent) {
         for (std::size_t k = 0; k < list.size(); ++k)
-            if (scratch.weights[k] > 0.0f) show(list[k].source, scratch.weights[k], list[k].meanDepth(), std::min(list[k].depth0, list[k].depth1));
+            if (scratch.weights[k] > 0.0f)
+                show(list[k].source, scratch.weights[k], list[k].meanDepth(), std::min(list[k].depth0, list[k].depth1),
+                     std::max(list[k].depth0, list[k].depth1));
         return;
     }
     for (const VisibleSpan& shown : scratch.visible) {
         const ExposureInterval& interval = list[shown.interval];
-        show(interval.source, shown.weight, interval.depthAt(0.5f * (shown.t0 + shown.t1)),
-             std::min(interval.depthAt(shown.t0), interval.depthAt(shown.t1)));
+        const float d0 = interval.depthAt(shown.t0), d1 = interval.depthAt(shown.t1);
+        show(interval.source, shown.weight, interval.depthAt(0.5f * (shown.t0 + shown.t1)), std::min(d0, d1), std::max(d0, d1));
     }
+}
+
+// Calls add(source, color) for each interval resolveSample last resolved from `list` whose
+// colour it added itself (shaded before the resolve: translucent, or compressed): its colour
+// times its share. The rest of the sample's colour is its background's and its pieces'.
+template <class Add>
+void forEachResolvedColor(const std::vector<ExposureInterval>& list, const SampleResolveScratch& scratch, Add&& add) {
+    for (std::size_t k = 0; k < list.size(); ++k)
+        if (scratch.weights[k] > 0.0f && list[k].isShaded) add(list[k].source, list[k].color * scratch.weights[k]);
 }
 
 }  // namespace streak::exposure

@@ -93,7 +93,7 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
         const int pixel = int(first / std::size_t(spp));
         const int px = rect.x0 + pixel % tileWidth, row = rect.y0 + pixel / tileWidth;
         pixelShading.begin(pattern, glm::dvec2(2.0 / width, 2.0 / height), shading.cellsFor(pattern.samplesPerAxis()));
-        if (passes) pixelPasses.begin();
+        if (passes) pixelPasses.begin(*passes);
         for (int s = 0; s < spp; ++s) {
             const std::size_t i = first + std::size_t(s);
             if (runs[i] == runs[i + 1]) {
@@ -107,11 +107,15 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
             color[i] = resolved.color, coverage[i] = resolved.coverage;
             pixelShading.add(s, ndc, std::span<const VisiblePiece>(pieces), isTextured);
         }
-        if (passes) pixelPasses.finish(*passes, px, row, 1.0f / float(spp));
         const auto start = Clock::now();
-        pixelShading.finish(shading, [&](std::uint32_t triangle, float t0, float t1, const ShadingSite& site) { return shade(triangle, t0, t1, site, row); },
-                            std::span<glm::vec3>(color).subspan(first, std::size_t(spp)), counters.shading);
+        pixelShading.finish(
+            shading, [&](std::uint32_t triangle, float t0, float t1, const ShadingSite& site) { return shade(triangle, t0, t1, site, row); },
+            std::span<glm::vec3>(color).subspan(first, std::size_t(spp)), counters.shading,
+            [&](std::uint32_t triangle, const glm::vec3& added) {
+                if (passes) pixelPasses.addColor(triangle, added);
+            });
         counters.shadeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+        if (passes) pixelPasses.finish(*passes, px, row, 1.0f / float(spp));
     }
     setTilePixels(rect, spp, color, coverage, image);
 }
@@ -237,11 +241,15 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
             scene.background, triangleOf, [&](std::uint32_t triangle) { return materialOf(triangle).isTranslucent(); },
             [&](std::uint32_t triangle, float t0, float t1) { return shade(triangle, t0, t1, sampleSite(ndc, pattern.samplesPerAxis()), row); },
             scratch.resolve, scratch.counters.resolve);
-        if (passes)
-            forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth, float nearest) {
-                const FlatTriangle& t = triangles[triangleOf(source)];
-                scratch.passes.add(t.mesh, t.material, share, depth, nearest);
+        if (passes) {
+            forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth, float nearest, float farthest) {
+                const std::uint32_t triangle = triangleOf(source);
+                const FlatTriangle& t = triangles[triangle];
+                scratch.passes.add({triangle, t.mesh, t.material, share, depth, nearest, farthest});
             });
+            if (scratch.passes.wantsColor())
+                forEachResolvedColor(list, scratch.resolve, [&](std::uint32_t source, const glm::vec3& added) { scratch.passes.addColor(triangleOf(source), added); });
+        }
         return ResolvedSample{color, scratch.resolve.coverage};
     }, shade);
 }

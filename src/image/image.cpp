@@ -1,5 +1,7 @@
 #include "image/image.h"
 
+#include "image/deep_image.h"
+
 #include "util/error.h"
 
 #include <glm/common.hpp>
@@ -62,6 +64,7 @@ Image Image::region(int x0, int y0, int x1, int y1) const {
     }
     out.m_metadata = m_metadata;
     out.place({x0, y0, m_width, m_height});
+    if (m_deep) out.m_deep = std::make_shared<const DeepImage>(m_deep->region(x0, y0, x1, y1));
     return out;
 }
 

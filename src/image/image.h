@@ -4,12 +4,15 @@
 
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace streak {
+
+class DeepImage;
 
 // Where an image lies in a larger frame: a region of it (a border render), its top-left pixel at
 // (x, y) of a frame frameWidth x frameHeight. EXR keeps it as the data window inside the display
@@ -68,6 +71,10 @@ public:
     void addChannel(std::string name, std::vector<float> values);
     void setMetadata(const std::string& key, std::string value) { m_metadata[key] = std::move(value); }
 
+    // The deep image of the same render (PassRequest::deep), or null: each pixel's surfaces as
+    // deep samples, compositing to this image's RGBA. region() crops it too.
+    const DeepImage* deep() const { return m_deep.get(); }
+    void setDeep(std::shared_ptr<const DeepImage> deep) { m_deep = std::move(deep); }
     // Where the image lies in its frame; none for a whole frame.
     const std::optional<FramePlacement>& placement() const { return m_placement; }
     // Throws Error unless the image lies inside the frame.
@@ -84,6 +91,7 @@ private:
     std::vector<ImageChannel> m_channels;
     std::map<std::string, std::string> m_metadata;
     std::optional<FramePlacement> m_placement;
+    std::shared_ptr<const DeepImage> m_deep;
 };
 
 // A render over `background` with its coverage (alpha) as what shows over a transparent one:

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "image/deep_image.h"
 #include "image/image.h"
 
 #include <string>
@@ -21,5 +22,10 @@ void writeImage(const Image& image, const std::string& path);
 // float; A, if any, as alpha). Throws Error
 // naming the path when it is missing, unreadable or of an unknown format.
 Image readImage(const std::string& path);
+
+// A deep image as a deep scanline EXR (R G B A Z ZBack, float), declared tidy, a region's data
+// window inside its frame; and back. Throws Error naming the path, as the flat ones do.
+void writeDeepImage(const DeepImage& image, const std::string& path);
+DeepImage readDeepImage(const std::string& path);
 
 }  // namespace streak

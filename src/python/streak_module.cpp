@@ -9,6 +9,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <string>
@@ -65,6 +67,48 @@ py::dict layersOf(const sk::Image& image) {
     for (const auto& [key, value] : image.metadata) metadata[py::str(key)] = value;
     out["metadata"] = metadata;
     return out;
+}
+
+// A deep image as {'counts': H x W uint32, 'samples': N x 6 float32 (Z, ZBack, R, G, B, A),
+// pixel by pixel, front to back}, and a region's 'origin' (x, y) and 'frame' (width, height).
+constexpr std::size_t kDeepColumns = sizeof(sk::DeepImage::Sample) / sizeof(float);
+static_assert(kDeepColumns == 6);
+
+py::dict deepOf(const sk::DeepImage& deep) {
+    py::dict out;
+    py::array_t<std::uint32_t> counts({py::ssize_t(deep.height), py::ssize_t(deep.width)});
+    std::copy(deep.counts.begin(), deep.counts.end(), counts.mutable_data());
+    py::array_t<float> samples({py::ssize_t(deep.samples.size()), py::ssize_t(kDeepColumns)});
+    if (!deep.samples.empty()) std::memcpy(samples.mutable_data(), deep.samples.data(), deep.samples.size() * sizeof(sk::DeepImage::Sample));
+    out["counts"] = counts;
+    out["samples"] = samples;
+    if (deep.isRegion()) out["origin"] = py::make_tuple(deep.x, deep.y), out["frame"] = py::make_tuple(deep.frameWidth, deep.frameHeight);
+    return out;
+}
+
+sk::DeepImage deepOf(const py::dict& in) {
+    if (!in.contains("counts") || !in.contains("samples")) throw streak::Error("deep image: a dict {'counts': (H, W), 'samples': (N, 6)} expected");
+    py::array_t<long long, py::array::c_style | py::array::forcecast> counts;
+    try {
+        counts = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(in["counts"]);
+    } catch (const py::error_already_set&) {
+    }
+    if (!counts || counts.ndim() != 2) throw streak::Error("deep image: 'counts' must be an integer array of shape (H, W)");
+    const FloatArray samples = floats(in["samples"], "deep image 'samples'", 2, py::ssize_t(kDeepColumns), "(N, 6): Z, ZBack, R, G, B, A");
+    sk::DeepImage deep;
+    deep.height = int(counts.shape(0)), deep.width = int(counts.shape(1));
+    for (py::ssize_t i = 0; i < counts.size(); ++i) {
+        const long long c = counts.data()[i];
+        if (c < 0 || c > 0xffffffffLL) throw streak::Error("deep image: counts must be in [0, 2^32)");
+        deep.counts.push_back(std::uint32_t(c));
+    }
+    deep.samples.resize(std::size_t(samples.shape(0)));
+    if (!deep.samples.empty()) std::memcpy(deep.samples.data(), samples.data(), deep.samples.size() * sizeof(sk::DeepImage::Sample));
+    if (in.contains("origin") && in.contains("frame")) {
+        const auto origin = in["origin"].cast<std::pair<int, int>>(), frame = in["frame"].cast<std::pair<int, int>>();
+        deep.x = origin.first, deep.y = origin.second, deep.frameWidth = frame.first, deep.frameHeight = frame.second;
+    }
+    return deep;
 }
 
 sk::Image imageOf(const py::handle& object, const char* name) {
@@ -279,11 +323,12 @@ PYBIND11_MODULE(streak, m) {
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
            const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region,
            bool transparent, const std::vector<std::string>& passes, int cryptomatteRanks, const py::object& progress,
-           const py::object& cancel, int threads) -> py::object {
+           const py::object& cancel, int threads, bool deep, int deepSamples) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
             s.transparent = transparent;
             s.passes = passes, s.cryptomatteRanks = cryptomatteRanks;
+            s.deep = deep, s.deepSamples = deepSamples;
             s.memoryBudgetMB = memoryBudgetMB;
             s.threads = threads;
             if (region) s.region = sk::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
@@ -315,7 +360,8 @@ PYBIND11_MODULE(streak, m) {
                 throw;
             }
             if (raised) throw std::move(*raised);  // raised by the last callback, after which nothing asked
-            py::object image = passes.empty() ? py::object(arrayOf(result.image)) : py::object(layersOf(result.image));
+            py::object image = passes.empty() && !deep ? py::object(arrayOf(result.image)) : py::object(layersOf(result.image));
+            if (result.deep) image["deep"] = deepOf(*result.deep);
             if (stats) return py::make_tuple(image, py::module_::import("json").attr("loads")(result.stats.json()));
             return image;
         },
@@ -323,7 +369,7 @@ PYBIND11_MODULE(streak, m) {
         py::arg("unlit") = false, py::arg("seed") = 0, py::arg("options") = std::map<std::string, std::string>(), py::arg("stats") = false,
         py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(), py::arg("transparent") = false,
         py::arg("passes") = std::vector<std::string>(), py::arg("cryptomatte_ranks") = 6, py::arg("progress") = py::none(),
-        py::arg("cancel") = py::none(), py::arg("threads") = 0,
+        py::arg("cancel") = py::none(), py::arg("threads") = 0, py::arg("deep") = false, py::arg("deep_samples") = 16,
         "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
         "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
         "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
@@ -331,7 +377,9 @@ PYBIND11_MODULE(streak, m) {
         "passes ['depth', 'object_id', 'material_id', 'albedo', 'normal', 'vector']: a dict {'image': the array, channel name: H x W array, 'metadata': {...}} "
         "(Z, Z.min, CryptoObject00.r, ...; cryptomatte_ranks pairs); progress(fraction) is called as the render goes, and "
         "cancel() with it: once cancel returns True the render stops and raises streak.Cancelled (both on the calling thread); "
-        "threads: worker threads (0: every core)");
+        "threads: worker threads (0: every core); deep: the dict also holds 'deep', the deep image {'counts': H x W uint32, "
+        "'samples': N x 6 float32 (Z, ZBack, R, G, B, A), pixel by pixel front to back}, at most deep_samples surface layers a pixel "
+        "(write_deep_image writes it)");
     m.def("methods", [] {
         py::list out;
         for (const sk::Method& method : sk::methods()) out.append(py::make_tuple(method.name, method.description));
@@ -348,6 +396,10 @@ PYBIND11_MODULE(streak, m) {
     "(foreground: where a channel of either is above the threshold)");
     m.def("write_image", [](const py::handle& image, const std::string& path) { sk::writeImage(imageOf(image, "image"), path); },
           py::arg("image"), py::arg("path"), ".png (sRGB 8-bit) or .exr (linear float)");
+    m.def("write_deep_image", [](const py::dict& deep, const std::string& path) { sk::writeDeepImage(deepOf(deep), path); }, py::arg("deep"),
+          py::arg("path"), "a deep image (render(..., deep=True)['deep']) as a deep scanline EXR: R G B A Z ZBack, tidy");
+    m.def("read_deep_image", [](const std::string& path) { return deepOf(sk::readDeepImage(path)); }, py::arg("path"),
+          "a deep scanline EXR with R G B A Z ZBack: {'counts': H x W, 'samples': N x 6 (Z, ZBack, R, G, B, A)}");
     m.def("read_image", [](const std::string& path) { return arrayOf(sk::readImage(path)); }, py::arg("path"));
     m.def("read_layers", [](const std::string& path) { return layersOf(sk::readImage(path)); }, py::arg("path"),
           "an image file with its passes: {'image': H x W x 3|4, channel name: H x W, 'metadata': {...}}");

@@ -10,6 +10,7 @@
 #include "support/temp_dir.h"
 
 #include <glm/common.hpp>
+#include <glm/vec4.hpp>
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
@@ -282,6 +284,43 @@ TEST(Cli, PassesGoToTheExrAndStitchWithTheRegions) {
         if (pass == "alpha" || pass.rfind("Crypto", 0) == 0) EXPECT_LT(std::stod(line.substr(rms + 6)), 0.03) << line;
     }
     EXPECT_GE(mattes, 2) << versus.out;
+}
+
+// --deep writes a deep EXR beside the image: read back, each pixel's samples are tidy and
+// composite front to back to the image's RGBA; a region's keeps its place; the stats count it.
+TEST(Cli, DeepGoesToItsOwnExrAndFlattensToTheImage) {
+    test::TempDir dir;
+    const std::string base = "render builtin:translucent -m analytic --width 64 --height 48 --aa 2 --transparent ";
+    const RunResult r = runStreak(dir, base + "--deep " + dir.file("deep.exr") + " -o " + dir.file("image.png") + " --stats " + dir.file("s.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json stats = nlohmann::json::parse(readFile(dir.file("s.json")));
+    ASSERT_EQ(runStreak(dir, base + "-o " + dir.file("image.exr")).exitCode, 0);
+    const Image image = readImage(dir.file("image.exr"));
+    const DeepImage deep = readDeepImage(dir.file("deep.exr"));
+    ASSERT_EQ(deep.width(), 64);
+    EXPECT_EQ(stats["counters"]["deep_samples"].get<double>(), double(deep.numSamples()));
+    std::size_t multiLayer = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            glm::vec4 flat(0.0f);
+            const std::span<const DeepSample> samples = deep.samples(x, y);
+            multiLayer += samples.size() > 1;
+            for (std::size_t k = 0; k < samples.size(); ++k) {
+                if (k > 0) ASSERT_LE(samples[k - 1].zBack, samples[k].z);
+                flat += (1.0f - flat.w) * glm::vec4(samples[k].color, samples[k].alpha);
+            }
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(flat[c], image.at(x, y)[c], 1e-5f) << x << "," << y;
+            ASSERT_NEAR(flat.w, image.alphaAt(x, y), 1e-5f) << x << "," << y;
+        }
+    EXPECT_GT(multiLayer, 100u);  // the translucent panes over what lies behind them
+    ASSERT_EQ(runStreak(dir, base + "--region 16,8,48,40 --deep " + dir.file("region.exr") + " -o " + dir.file("region_image.exr")).exitCode, 0);
+    const DeepImage region = readDeepImage(dir.file("region.exr"));
+    ASSERT_TRUE(region.placement());
+    EXPECT_EQ(region.placement()->x, 16);
+    EXPECT_EQ(region.placement()->y, 8);
+    EXPECT_EQ(region.width(), 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) ASSERT_EQ(region.samples(x, y).size(), deep.samples(x + 16, y + 8).size());
 }
 
 // --repeat renders again with the same renderer: the same image, and the stats of the last
@@ -706,6 +745,12 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"unknown pass", "render builtin:crossing -m motion-path --width 16 --height 16 --passes depth,normals -o " + dir.file("passes.exr")},
         {"passes from a method without them", "render " + ok + "--passes object_id -o " + dir.file("passes.exr")},
         {"no cryptomatte ranks", "render builtin:crossing -m analytic --width 16 --height 16 --passes object_id --cryptomatte-ranks 0 -o " + dir.file("passes.exr")},
+        {"deep to a PNG", "render builtin:crossing -m analytic --width 16 --height 16 --deep " + dir.file("deep.png") + " -o " + dir.file("passes.exr")},
+        {"deep from a method without it", "render " + ok + "--deep " + dir.file("deep.exr") + " -o " + out},
+        {"no deep samples", "render builtin:crossing -m analytic --width 16 --height 16 --deep " + dir.file("deep.exr") + " --deep-samples 0 -o " + out},
+        {"deep onto the image", "render builtin:crossing -m analytic --width 16 --height 16 --deep " + dir.file("deep.exr") + " -o " + dir.file("deep.exr")},
+        {"deep into a missing folder", "render builtin:crossing -m analytic --width 16 --height 16 --deep " + dir.file("no/deep.exr") + " -o " + out},
+        {"deep of a sequence without %d", "render " + triangle + " --frames 0:2 -m analytic --deep " + dir.file("deep.exr") + " -o " + dir.file("out_%d.png")},
         {"gpu memory on a CPU method", "render builtin:crossing -m motion-path --gpu-memory 64 -o " + out},
         {"zero repeat", "render " + ok + "--repeat 0 -o " + out},
         {"zero memory budget", "render " + ok + "--memory-budget 0 -o " + out},

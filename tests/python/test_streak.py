@@ -108,6 +108,49 @@ class RenderTest(unittest.TestCase):
             self.assertTrue(all(r["rms"] == 0 for r in rows.values()))
             self.assertTrue(all(f"CryptoObject {n}" in rows for n in names))
 
+    def test_deep_comes_back_as_arrays_and_openimageio_flattens_it_to_the_image(self):
+        # The sweeping quad over a transparent background: one deep sample a covered pixel, at
+        # depth 3, whose alpha is its closed-form coverage. Written as a deep EXR, OpenImageIO
+        # reads it and its flatten gives the render's RGBA.
+        keys, indices, camera = sweeping_quad()
+        scene = streak.Scene.from_arrays(keys, indices, camera=camera)
+        out = streak.render(scene, method="analytic", width=16, height=4, unlit=True, transparent=True, deep=True)
+        deep = out["deep"]
+        self.assertEqual(deep["counts"].shape, (4, 16))
+        self.assertEqual(deep["samples"].shape, (int(deep["counts"].sum()), 6))
+        coverage = np.clip((14 - (np.arange(16) + 0.5)) / 12, 0, 1)
+        np.testing.assert_array_equal(deep["counts"][0], (coverage > 0).astype(np.uint32))
+        first_row = deep["samples"][: int(deep["counts"][0].sum())]
+        np.testing.assert_allclose(first_row[:, 0], 3.0, rtol=1e-5)  # Z
+        np.testing.assert_allclose(first_row[:, 5], coverage[coverage > 0], atol=1e-5)  # A
+        try:
+            import OpenImageIO as oiio
+        except ImportError:
+            self.skipTest("OpenImageIO's Python (python3-openimageio) is not installed")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "deep.exr")
+            streak.write_deep_image(deep, path)
+            back = streak.read_deep_image(path)
+            np.testing.assert_array_equal(back["counts"], deep["counts"])
+            np.testing.assert_array_equal(back["samples"], deep["samples"])
+            buf = oiio.ImageBuf(path)
+            self.assertTrue(buf.deep)
+            self.assertEqual(list(buf.spec().channelnames), ["R", "G", "B", "A", "Z", "ZBack"])
+            flat = oiio.ImageBufAlgo.flatten(buf).get_pixels(oiio.FLOAT)
+            np.testing.assert_allclose(flat[..., :4], out["image"], atol=1e-5)
+            # The CLI's deep file of a lit render over an opaque background (its sample behind
+            # all): builtin:translucent, whose panes lie over each other, flattens to its image.
+            image, deep_path = os.path.join(tmp, "t.exr"), os.path.join(tmp, "t_deep.exr")
+            subprocess.run([CLI, "render", "builtin:translucent", "-m", "motion-path", "--width", "64", "--height", "48", "--aa", "2",
+                            "--deep", deep_path, "-o", image], check=True)
+            flat = oiio.ImageBufAlgo.flatten(oiio.ImageBuf(deep_path)).get_pixels(oiio.FLOAT)
+            np.testing.assert_allclose(flat[..., :3], streak.read_image(image), atol=1e-5)
+            np.testing.assert_allclose(flat[..., 3], 1.0, atol=1e-5)
+        with self.assertRaises(streak.Error):
+            streak.render(scene, method="accumulation", width=16, height=4, deep=True)
+        with self.assertRaises(streak.Error):
+            streak.write_deep_image({"counts": np.ones((2, 2)), "samples": np.zeros((3, 6), np.float32)}, "x.exr")
+
     @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
     def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):
         # Scene.load takes the CLI's motion flags: chosen Bezier pieces render as the CLI's do.

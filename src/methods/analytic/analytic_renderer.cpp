@@ -122,7 +122,7 @@ public:
             stats.setCounter("depth_misordered_fraction", r.coveredPairTime > 0.0 ? r.misorderedTime / r.coveredPairTime : 0.0);
         }
 
-        if (frame.passes) frame.passes->writeTo(image);
+        if (frame.passes) frame.passes->writeTo(image, context.stats);
         return image;
     }
 

@@ -133,7 +133,7 @@ public:
                 const ShutterWindow window = scene.shutter.rowWindow(py, height);  // times stratified in its exposure
                 for (int px = pixels.x0; px <= pixels.x1; ++px) {
                     glm::vec4 sum(0.0f);
-                    if (passes) passes->begin();
+                    if (passes) passes->begin(*passFrame);
                     const std::uint64_t pixel = std::uint64_t(py) * std::uint64_t(width) + std::uint64_t(px);
                     for (int a = 0; a < spp; ++a) {
                         const glm::dvec2 ndc = pattern.ndcOf(px, py, a, width, height);
@@ -167,7 +167,7 @@ public:
         stats.setCounter("time_samples_per_position", m_options.samples);
         stats.setCounter("rays", double(rays.load()));
         stats.setCounter("translucent_layer_overflow_samples", double(overflowSamples.load()));
-        if (passFrame) passFrame->writeTo(image);
+        if (passFrame) passFrame->writeTo(image, context.stats);
         return image;
     }
 
@@ -297,8 +297,12 @@ private:
             const SurfacePoint point = geometry.surfacePoint(tri, corners, normals, bary, right, down, isFrontFacing);
             const ShadedColor shaded = shadeSurface(scene, shading, point, ray.origin);
             const bool isOpaque = !scene.materials[tri.material].isTranslucent();
-            if (passes && (isOpaque || layers < m_options.maxLayers))
-                passes->add(tri.mesh, tri.material, transmittance * (isOpaque ? 1.0f : shaded.alpha), hit.ray.tfar, hit.ray.tfar);
+            if (passes && (isOpaque || layers < m_options.maxLayers)) {
+                const std::uint32_t triangle = mesh.firstTriangle + hit.hit.primID;
+                const float share = transmittance * (isOpaque ? 1.0f : shaded.alpha);
+                passes->add({triangle, tri.mesh, tri.material, share, hit.ray.tfar, hit.ray.tfar, hit.ray.tfar});
+                passes->addColor(triangle, share * shaded.color);
+            }
             if (isOpaque) return glm::vec4(color + transmittance * shaded.color, 1.0f);
             if (layers == m_options.maxLayers) {
                 isOverflow = true;  // past the budget: further translucent layers are left out

@@ -143,7 +143,7 @@ public:
             stats.setCounter("visibility_checks", m_options.checkVisibility);
         }
 
-        if (frame.passes) frame.passes->writeTo(image);
+        if (frame.passes) frame.passes->writeTo(image, context.stats);
         return image;
     }
 

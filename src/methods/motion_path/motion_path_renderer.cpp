@@ -195,7 +195,7 @@ public:
         exposure::recordSegmentPlan(stats, frame.segmented.segmentPlan());
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
-        if (frame.passes) frame.passes->writeTo(image);
+        if (frame.passes) frame.passes->writeTo(image, context.stats);
         return image;
     }
 
@@ -251,16 +251,19 @@ private:
 
     // Adds to the pixel's passes what shows in sample i (its sorted intervals begin to end):
     // with exact opaque weights, each span where an interval is the nearest; else each interval
-    // with a share. Each at its depth in the middle, and the nearest its polyline gets in it (its
-    // ends and the corners between).
+    // with a share. Each at its depth in the middle, and the nearest and farthest its polyline
+    // gets in it (its ends and the corners between).
     static void addShownSurfaces(const Frame& frame, TileScratch& scratch, std::uint32_t begin, std::uint32_t end, std::size_t i,
                                  bool hasVisibleSpans) {
         auto add = [&](const Interval& interval, float share, float t0, float t1) {
-            const FlatTriangle& t = frame.geometry.triangles()[frame.paths[interval.source].triangle];
-            float nearest = std::min(motion_path::depthAt(interval, scratch.knots, t0), motion_path::depthAt(interval, scratch.knots, t1));
+            const std::uint32_t triangle = frame.paths[interval.source].triangle;
+            const FlatTriangle& t = frame.geometry.triangles()[triangle];
+            const float d0 = motion_path::depthAt(interval, scratch.knots, t0), d1 = motion_path::depthAt(interval, scratch.knots, t1);
+            float nearest = std::min(d0, d1), farthest = std::max(d0, d1);
             for (std::uint32_t k = interval.firstKnot; k < interval.firstKnot + interval.numKnots; ++k)
-                if (scratch.knots[k].t > t0 && scratch.knots[k].t < t1) nearest = std::min(nearest, scratch.knots[k].depth);
-            scratch.passes.add(t.mesh, t.material, share, motion_path::depthAt(interval, scratch.knots, 0.5f * (t0 + t1)), nearest);
+                if (scratch.knots[k].t > t0 && scratch.knots[k].t < t1)
+                    nearest = std::min(nearest, scratch.knots[k].depth), farthest = std::max(farthest, scratch.knots[k].depth);
+            scratch.passes.add({triangle, t.mesh, t.material, share, motion_path::depthAt(interval, scratch.knots, 0.5f * (t0 + t1)), nearest, farthest});
         };
         if (hasVisibleSpans) {
             for (std::uint32_t v = scratch.visibleRuns[i]; v < scratch.visibleRuns[i + 1]; ++v) {
@@ -525,7 +528,7 @@ private:
             const ShutterWindow window = sampleWindow(frame, rect, first);
             scratch.pixelShading.begin(frame.pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
                                        options.shading.cellsFor(frame.pattern.samplesPerAxis()));
-            if (frame.passes) scratch.passes.begin();
+            if (frame.passes) scratch.passes.begin(*frame.passes);
             for (int s = 0; s < spp; ++s) {
                 const std::size_t i = first + std::size_t(s);
                 glm::vec3 sum = frame.scene.background * scratch.backgroundWeights[i];
@@ -537,9 +540,10 @@ private:
                     if (scratch.weights[k] <= 0.0f) continue;
                     const Interval& interval = scratch.sorted[k];
                     const std::uint32_t triangle = frame.paths[interval.source].triangle;
-                    if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent())
+                    if (frame.scene.materials[frame.geometry.triangles()[triangle].material].isTranslucent()) {
                         sum += interval.color * scratch.weights[k];
-                    else if (!hasVisibleSpans) {
+                        if (frame.passes) scratch.passes.addColor(triangle, interval.color * scratch.weights[k]);
+                    } else if (!hasVisibleSpans) {
                         bool isWhole;
                         if (options.exactWeights) {
                             isWhole = scratch.weights[k] >= window.measure(interval.t0, interval.t1) * (1.0f - 1e-5f);
@@ -570,7 +574,10 @@ private:
                 [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site) {
                     return frame.shade(triangle, t0, t1, site, window, scratch.movingTriangles);
                 },
-                std::span<glm::vec3>(scratch.color).subspan(first, std::size_t(spp)), counters.shading);
+                std::span<glm::vec3>(scratch.color).subspan(first, std::size_t(spp)), counters.shading,
+                [&](std::uint32_t triangle, const glm::vec3& added) {
+                    if (frame.passes) scratch.passes.addColor(triangle, added);
+                });
             if (frame.passes) {
                 const int pixel = int(first / std::size_t(spp)), tileWidth = rect.x1 - rect.x0 + 1;
                 scratch.passes.finish(*frame.passes, rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, 1.0f / float(spp));
