@@ -16,7 +16,7 @@ importer turns the scene; RMS of the vector difference) it reports:
 RMS are over every pixel of the image (mattes: over the pixels where either has coverage).
 Names are matched exactly between the two manifests; unmatched names are listed.
 
-Usage: bench/passes_bench.py [--models CesiumMan,Fox,BoxAnimated] [--method analytic] [--aa 8]
+Usage: bench/passes_bench.py [--models CesiumMan,Fox,BoxAnimated] [--method analytic] [--samples S] [--aa 8]
     [--spp 1024] [--out DIR] [--streak build/streak] [--blender blender] [--reuse-cycles]
 """
 import argparse
@@ -107,6 +107,7 @@ def main():
     parser.add_argument("--streak", default=cycles_reference.STREAK)
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--reuse-cycles", action="store_true")
+    parser.add_argument("--samples", type=int, help="the sampled methods' --samples (accumulation, stochastic, embree)")
     args = parser.parse_args()
     sk = streak_module(args.streak)
     models = {m[0]: m for m in ground_truth_bench.MODELS}
@@ -128,6 +129,8 @@ def main():
         command = [args.streak, "render", scene, *ground_truth_bench.scene_flags(flags), "-m", args.method, "--width", str(args.width),
                    "--height", str(args.height), "--aa", str(args.aa), "--shading", "unlit", "--transparent",
                    "--passes", "object_id,material_id,normal", "-o", mine]
+        if args.samples:
+            command += ["--samples", str(args.samples)]
         start = time.perf_counter()
         subprocess.run(command, check=True)
         seconds = time.perf_counter() - start

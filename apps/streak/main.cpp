@@ -379,6 +379,7 @@ int runRender(const RenderArgs& args) {
     if (!settings.passes.empty() && lowercaseExtension(args.output) != ".exr")
         throw Error("--passes are written to EXR: -o " + args.output + " is not an .exr");
     if (args.deep && lowercaseExtension(*args.deep) != ".exr") throw Error("--deep writes a deep EXR: " + *args.deep + " is not an .exr");
+    if (args.deepSamples < 1 || args.deepSamples > 1024) throw Error("--deep-samples must be in [1, 1024], got " + std::to_string(args.deepSamples));
     settings.deep = args.deep.has_value();
     settings.deepSamples = args.deepSamples;
     settings.unlit = args.shading == "unlit";
@@ -417,7 +418,8 @@ int runRender(const RenderArgs& args) {
         if (args.deep) {
             deepPaths.push_back(framePath(*args.deep, frame, list.isSequence, "--deep"));
             checkWritable(deepPaths.back(), true);
-            if (deepPaths.back() == outputs.back()) throw Error("--deep " + deepPaths.back() + " is the -o image: the deep image is a file of its own");
+            if (std::filesystem::weakly_canonical(deepPaths.back()) == std::filesystem::weakly_canonical(outputs.back()))
+                throw Error("--deep " + deepPaths.back() + " is the -o image: the deep image is a file of its own");
         }
         if (isStatsPerFrame) {
             statsPaths.push_back(framePath(args.stats, frame, list.isSequence, "--stats"));
@@ -453,12 +455,17 @@ int runRender(const RenderArgs& args) {
             sk::Stats& stats = result.stats;
             stats.counters["repeat"] = args.repeat;
             if (list.isSequence) stats.counters["frame"] = list.frames[f];
+            // All or nothing, per frame: the image, its deep image and its stats.
+            auto removeFrame = [&] {
+                std::filesystem::remove(outputs[f]);
+                if (args.deep) std::filesystem::remove(deepPaths[f]);
+            };
             writeAccepted([&] { sk::writeImage(result.image, outputs[f]); });
             if (result.deep) {
                 try {
                     writeAccepted([&] { sk::writeDeepImage(*result.deep, deepPaths[f]); });
                 } catch (const Error&) {
-                    std::filesystem::remove(outputs[f]);  // all or nothing, per frame
+                    std::filesystem::remove(outputs[f]);
                     throw;
                 }
             }
@@ -467,7 +474,7 @@ int runRender(const RenderArgs& args) {
                 try {
                     writeAccepted([&] { writeTextFile(statsPaths[f], stats.json()); });
                 } catch (const Error&) {
-                    std::filesystem::remove(outputs[f]);  // all or nothing, per frame
+                    removeFrame();
                     throw;
                 }
             } else if (!args.stats.empty()) {
@@ -490,7 +497,10 @@ int runRender(const RenderArgs& args) {
         try {
             writeAccepted([&] { writeTextFile(args.stats, text); });
         } catch (const Error&) {
-            if (!list.isSequence) std::filesystem::remove(outputs.front());  // all or nothing
+            if (!list.isSequence) {  // all or nothing
+                std::filesystem::remove(outputs.front());
+                if (args.deep) std::filesystem::remove(deepPaths.front());
+            }
             throw;
         }
     }
@@ -646,19 +656,20 @@ int run(int argc, char** argv) {
     render->add_flag("--sample-grid", renderArgs.sampleGrid, "place the --aa samples on the regular N x N grid instead of n-rooks");
     render->add_option("--passes", renderArgs.passes,
                        "passes written beside the colour into the EXR, comma-separated: depth (Z, Z.min), object_id and material_id "
-                       "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact, embree sampled), "
+                       "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact; embree, accumulation, stochastic sampled), "
                        "albedo (albedo.R/G/B: every method, one more render, unlit), normal (normal.X/Y/Z: every method, one more render), "
                        "vector (vector.X/Y/Z/W, Blender's Vector: screen motion in pixels to the frame before and from the frame after; "
                        "CPU methods, scenes with frames, two more renders)");
     render->add_option("--cryptomatte-ranks", renderArgs.cryptomatteRanks, "Cryptomatte (ID, coverage) pairs kept per pixel")->capture_default_str();
-    render->add_option("--deep", renderArgs.deep,
+    CLI::Option* deepOption = render->add_option("--deep", renderArgs.deep,
                        "also write a deep scanline EXR (R G B A Z ZBack, what Nuke's DeepRead takes) to this .exr: per pixel a sample per "
                        "visible surface layer, from the nearest depth it shows at to the farthest, compositing front to back to the image's RGBA "
-                       "(the background's sample at Z 1e10 unless --transparent); motion-path, analytic, higher-order exact, embree sampled. "
+                       "(the background's sample at Z 1e10 unless --transparent); motion-path, analytic, higher-order exact; embree, accumulation, stochastic sampled. "
                        "With --frames, a pattern as -o");
     render->add_option("--deep-samples", renderArgs.deepSamples,
                        "deep samples (surface layers) kept per pixel; the closest in depth are joined past it (deep_layers_merged in --stats)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->needs(deepOption);
     render->add_flag("--transparent", renderArgs.transparent,
                      "transparent background (Blender's Film > Transparent): RGBA, alpha the exact coverage; EXR premultiplied, PNG straight");
     render->add_option("--shading", renderArgs.shading, "phong (one directional light + ambient) or unlit (albedo)")->capture_default_str();

@@ -61,8 +61,9 @@ struct RenderSettings {
     // and Z.min, the nearest; 1e10 where nothing shows), "object_id" and "material_id"
     // (Cryptomatte 1.1 layers CryptoObject00... and CryptoMaterial00...: cryptomatteRanks ranked
     // (ID, coverage) pairs of the scene's object and material names, the coverages of a pixel
-    // summing to its alpha): written by motion-path, analytic and higher-order (exact) and embree
-    // (sampled), refused by the others. "albedo" (albedo.R/G/B: the unlit colour of what shows,
+    // summing to its alpha): written by motion-path, analytic and higher-order (exact), and by
+    // embree, accumulation and stochastic (sampled: their estimate at their shutter times),
+    // refused by the others (post-filter, blur-shell, the GL twins). "albedo" (albedo.R/G/B: the unlit colour of what shows,
     // premultiplied as the colour): every method, by one more render shaded unlit. "normal"
     // (normal.X/Y/Z: the world-space unit normal of what shows, averaged and premultiplied
     // likewise): every method, by one more render. "vector" (vector.X/Y/Z/W, Blender's Vector:
@@ -79,8 +80,8 @@ struct RenderSettings {
     // back gives the render's colour and alpha exactly. At most deepSamples layers per pixel
     // (the closest in depth are joined past it; counted in the stats as deep_layers_merged),
     // and, without a transparent background, the background's sample behind them at z 1e10.
-    // Written by motion-path, analytic and higher-order (exact) and embree (sampled: a layer
-    // per surface its rays hit), refused by the others.
+    // Written by the methods that write the depth and Cryptomatte passes, exact or sampled (a
+    // sampled method's layers are the surfaces it hit at its times), refused by the others.
     bool deep = false;
     int deepSamples = 16;
     bool sampleGrid = false;

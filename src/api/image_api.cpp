@@ -66,6 +66,11 @@ streak::DeepImage deepImageOf(const DeepImage& in) {
         if (in.counts[i] > in.samples.size() - next) throw Error("deep image: the counts add up to more samples than it holds");
         for (std::uint32_t k = 0; k < in.counts[i]; ++k, ++next) {
             const DeepImage::Sample& s = in.samples[next];
+            // The file says it is tidy: sorted by Z, none overlapping another, alphas in [0, 1].
+            const bool isApart = k == 0 || (in.samples[next - 1].zBack <= s.z && in.samples[next - 1].z < s.z);
+            if (!(std::isfinite(s.z) && std::isfinite(s.zBack) && s.z <= s.zBack && isApart && s.a >= 0.0f && s.a <= 1.0f))
+                throw Error("deep image: pixel " + std::to_string(i % std::size_t(in.width)) + "," + std::to_string(i / std::size_t(in.width)) +
+                            " is not tidy (samples sorted by Z, Z <= ZBack, none overlapping, alpha in [0, 1], finite)");
             perPixel[i].push_back({s.z, s.zBack, glm::vec3(s.r, s.g, s.b), s.a});
         }
     }
@@ -73,7 +78,7 @@ streak::DeepImage deepImageOf(const DeepImage& in) {
     streak::DeepImage out(in.width, in.height);
     out.assign(perPixel);
     if (in.isRegion()) {
-        if (in.x < 0 || in.y < 0 || in.x + in.width > in.frameWidth || in.y + in.height > in.frameHeight)
+        if (in.x < 0 || in.y < 0 || std::int64_t(in.x) + in.width > in.frameWidth || std::int64_t(in.y) + in.height > in.frameHeight)
             throw Error("deep image: its region does not lie inside its frame");
         out.place({in.x, in.y, in.frameWidth, in.frameHeight});
     }

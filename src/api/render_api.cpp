@@ -191,7 +191,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (s.passes.any() && !m_impl->method->writesPasses())
         throw Error("method " + settings.method + " does not write the depth, Cryptomatte and deep passes (" +
                     std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : s.passes.materialId ? "material_id" : "deep") +
-                    "): motion-path, analytic and higher-order write them exactly, embree sampled");
+                    "): motion-path, analytic and higher-order write them exactly, embree, accumulation and stochastic sampled");
 }
 
 Renderer::~Renderer() = default;
@@ -281,6 +281,7 @@ RenderResult Renderer::render(const Scene& scene, const std::function<void(doubl
         if (settings.deep) {
             if (!image.deep()) throw RenderFailure("method " + settings.method + " gave no deep image");
             result.deep = deepImageOf(*image.deep());
+            stats.setCounter("deep_samples", double(result.deep->samples.size()));  // the region's, once cropped
         }
     }
     if (const std::optional<Region>& r = settings.region)

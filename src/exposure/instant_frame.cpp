@@ -68,7 +68,7 @@ std::int64_t drawInstantTile(const FlatGeometry& geometry, const InstantFrame& f
             const float invW = rt.screen.interpolate(e).invW;
             if (isTranslucent) {
                 const ShadedColor c = shade(rt, e);
-                blended.push_back({std::uint32_t(i), invW, c.color, c.alpha});
+                blended.push_back({std::uint32_t(i), invW, c.color, c.alpha, rt.source});
             } else if (invW > scratch.visible[i].invW) {
                 scratch.visible[i] = {invW, index, e};
             }
@@ -83,6 +83,12 @@ std::int64_t drawInstantTile(const FlatGeometry& geometry, const InstantFrame& f
         scratch.opaqueInvW[i] = v.invW;
         scratch.color[i] = v.invW > 0.0f ? shade(frame.triangles[v.triangle], v.edges).color : scene.background;
         scratch.coverage[i] = v.invW > 0.0f ? 1.0f : 0.0f;
+    }
+    if (draw.keepsSurfaces) {
+        scratch.opaqueColor.assign(scratch.color.begin(), scratch.color.end());
+        scratch.opaqueTriangle.resize(numSamples);
+        for (std::size_t i = 0; i < numSamples; ++i)
+            scratch.opaqueTriangle[i] = scratch.visible[i].invW > 0.0f ? frame.triangles[scratch.visible[i].triangle].source : ~0u;
     }
     if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color, scratch.coverage);
     // Submission order within the tile is the scene's triangle order, and each triangle's

@@ -37,6 +37,7 @@ struct InstantFrame {
 struct InstantDraw {
     ShadingMode shading = ShadingMode::Phong;
     std::uint32_t firstInOrderMesh = std::numeric_limits<std::uint32_t>::max();
+    bool keepsSurfaces = false;  ///< keep each sample's opaque surface and colour (for the passes)
 };
 
 // Scratch memory of one thread for one tile.
@@ -50,8 +51,13 @@ struct InstantScratch {
     std::vector<float> opaqueInvW;
     std::vector<glm::vec3> color;      ///< the tile's samples, pixel-major: the result
     std::vector<float> coverage;       ///< and their coverage (alpha)
-    std::vector<raster::TranslucentFragment> translucent;
+    std::vector<raster::TranslucentFragment> translucent;  ///< sorted by compositeTranslucent; `triangle` a FlatTriangle
     std::vector<raster::TranslucentFragment> inOrder;
+    // With InstantDraw::keepsSurfaces, per sample: the FlatTriangle of its opaque surface (~0u:
+    // none), its 1 / depth (opaqueInvW) and its colour, before the translucent ones over it.
+    std::vector<std::uint32_t> opaqueTriangle;
+    std::vector<glm::vec3> opaqueColor;
+    std::vector<float> transmittance;  ///< the passes' scratch
 };
 
 // Rasterizes, shades and resolves one tile of `frame` (binned in `grid`) into scratch.color

@@ -3,6 +3,7 @@
 #include "image/cryptomatte.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <string>
 
@@ -105,6 +106,39 @@ void PixelPasses::addColor(std::uint32_t triangle, const glm::vec3& color) {
     if (m_wantsColor) m_deep.push_back({triangle, ~0u, 0.0f, kEmptyDepth, -kEmptyDepth, color});
 }
 
+void PixelPasses::compact() {
+    std::sort(m_deep.begin(), m_deep.end(), [](const DeepRecord& a, const DeepRecord& b) { return a.triangle < b.triangle; });
+    std::size_t n = 0;
+    for (const DeepRecord& r : m_deep) {
+        if (n > 0 && m_deep[n - 1].triangle == r.triangle) {
+            DeepRecord& into = m_deep[n - 1];
+            if (r.object != ~0u) into.object = r.object;
+            into.share += r.share, into.color += r.color;
+            into.nearest = std::min(into.nearest, r.nearest), into.farthest = std::max(into.farthest, r.farthest);
+        } else {
+            m_deep[n++] = r;
+        }
+    }
+    m_deep.resize(n);
+}
+
+SampledPasses::SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height)
+    : m_frame(scene, request, width, height), m_triangles(triangles), m_width(width), m_pixels(std::size_t(width) * std::size_t(height)) {
+    for (PixelPasses& pixel : m_pixels) pixel.begin(m_frame);
+}
+
+void SampledPasses::add(PixelPasses& pixel, std::uint32_t triangle, float share, float depth, const glm::vec3& color) {
+    const FlatTriangle& t = m_triangles[triangle];
+    pixel.add({triangle, t.mesh, t.material, share, depth, depth, depth});
+    pixel.addColor(triangle, color);
+}
+
+void SampledPasses::writeTo(const raster::PixelBounds& pixels, float sampleWeight, Image& image, RenderStats& stats) {
+    for (int y = pixels.y0; y <= pixels.y1; ++y)
+        for (int x = pixels.x0; x <= pixels.x1; ++x) m_pixels[std::size_t(y) * std::size_t(m_width) + std::size_t(x)].finish(m_frame, x, y, sampleWeight);
+    m_frame.writeTo(image, stats);
+}
+
 int layerDeepSurfaces(std::vector<DeepLayer>& layers, int maxLayers) {
     std::sort(layers.begin(), layers.end(), [](const DeepLayer& a, const DeepLayer& b) {
         return a.nearest != b.nearest ? a.nearest < b.nearest : a.farthest < b.farthest;
@@ -180,6 +214,11 @@ void PixelPasses::finish(PassFrame& frame, int x, int y, float sampleWeight) {
                 layer.color += glm::dvec3(r.color) * double(sampleWeight);
                 layer.nearest = std::min(layer.nearest, r.nearest), layer.farthest = std::max(layer.farthest, r.farthest);
             }
+            // A depth past the background's, or none at all (NaN), is held in front of the
+            // background's sample, so the samples stay sorted and apart.
+            static const float kFarthest = std::nextafter(kEmptyDepth, 0.0f);
+            auto held = [](float d) { return d == d ? std::min(d, kFarthest) : kFarthest; };
+            layer.nearest = held(layer.nearest), layer.farthest = std::max(held(layer.farthest), layer.nearest);
             if (layer.share > 0.0) layers.push_back(layer);
             i = j;
         }

@@ -3,6 +3,9 @@
 #include "image/deep_image.h"
 #include "image/image.h"
 #include "image/passes.h"
+#include "raster/tile_grid.h"
+#include "raster/translucency.h"
+#include "scene/flat_geometry.h"
 #include "scene/scene.h"
 #include "util/stats.h"
 
@@ -10,6 +13,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -71,6 +75,9 @@ public:
     // over its pieces; kept only for the deep image.
     void addColor(std::uint32_t triangle, const glm::vec3& color);
     bool wantsColor() const { return m_wantsColor; }
+    // Joins each triangle's records for the deep image into one, so a pixel added to at many
+    // times (SampledPasses) keeps one a surface.
+    void compact();
     // Writes the pixel: each sample weighs sampleWeight (1 / samples for the box filter).
     void finish(PassFrame& frame, int x, int y, float sampleWeight);
 
@@ -85,6 +92,58 @@ private:
     float m_nearest = kEmptyDepth;
     bool m_wantsColor = false;  ///< the frame is deep
     std::vector<DeepRecord> m_deep;
+};
+
+// The passes of a method that samples the shutter at instants or strata (accumulation,
+// stochastic): each pixel's PixelPasses kept across them (one thread at a time per pixel: the
+// tiles of one time are disjoint), each tile's samples added at each time, and the pixels
+// written at the end. Their estimate converges to the exact methods' as the times grow.
+class SampledPasses {
+public:
+    SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height);
+
+    // One tile's samples (pixel-major in rect, spp a pixel) at one time, each weighed
+    // weightOfRow(row): the opaque surface opaqueTriangle[i] (a FlatTriangle; ~0u: none) at
+    // 1 / opaqueInvW[i], shaded opaqueColor[i], behind the translucent fragments that
+    // compositeTranslucent sorted (their `triangle` a FlatTriangle too). `transmittance` is
+    // the caller's scratch.
+    template <class WeightOfRow>
+    void addTile(const raster::PixelBounds& rect, int spp, std::span<const std::uint32_t> opaqueTriangle, std::span<const float> opaqueInvW,
+                 std::span<const glm::vec3> opaqueColor, const std::vector<raster::TranslucentFragment>& sorted,
+                 std::vector<float>& transmittance, WeightOfRow&& weightOfRow) {
+        const int tileWidth = rect.x1 - rect.x0 + 1;
+        auto pixelOf = [&](std::size_t sample, int& x, int& y) -> PixelPasses& {
+            const int p = int(sample / std::size_t(spp));
+            x = rect.x0 + p % tileWidth, y = rect.y0 + p / tileWidth;
+            return m_pixels[std::size_t(y) * std::size_t(m_width) + std::size_t(x)];
+        };
+        transmittance.assign(opaqueTriangle.size(), 1.0f);
+        raster::forEachCompositedFragment(sorted, opaqueInvW, std::span<float>(transmittance), [&](const raster::TranslucentFragment& f, float share) {
+            int x = 0, y = 0;
+            add(pixelOf(f.sample, x, y), f.triangle, share * weightOfRow(y), 1.0f / f.invW, f.color * (share * weightOfRow(y)));
+        });
+        for (std::size_t i = 0; i < opaqueTriangle.size(); ++i) {
+            int x = 0, y = 0;
+            PixelPasses& pixel = pixelOf(i, x, y);
+            if (opaqueTriangle[i] != ~0u && opaqueInvW[i] > 0.0f) {
+                const float share = transmittance[i] * weightOfRow(y);
+                add(pixel, opaqueTriangle[i], share, 1.0f / opaqueInvW[i], opaqueColor[i] * share);
+            }
+            if ((i + 1) % std::size_t(spp) == 0 && m_frame.request().deep) pixel.compact();
+        }
+    }
+
+    // Writes the pixels of `pixels` (the render's region) into the frame, each sample at each
+    // time weighing sampleWeight, and the frame into `image`.
+    void writeTo(const raster::PixelBounds& pixels, float sampleWeight, Image& image, RenderStats& stats);
+
+private:
+    void add(PixelPasses& pixel, std::uint32_t triangle, float share, float depth, const glm::vec3& color);
+
+    PassFrame m_frame;
+    const std::vector<FlatTriangle>& m_triangles;
+    int m_width = 0;
+    std::vector<PixelPasses> m_pixels;
 };
 
 // A pixel's surfaces joined into deep layers. Each `Layer` is its surfaces' summed share of the

@@ -339,8 +339,11 @@ DeepImage decodeDeepExr(const std::vector<char>& bytes, const std::string& path)
     const std::int64_t width = std::int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
     const std::int64_t height = std::int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
     if (width <= 0 || height <= 0 || width > INT_MAX || height > INT_MAX) throw std::runtime_error("bad data window");
-    for (const DeepChannel& c : kDeepChannels)
-        if (!file.header().channels().findChannel(c.name)) throw std::runtime_error(std::string("no deep channel ") + c.name);
+    // Z and A are what make deep data; ZBack, when absent, is Z (a point sample), and a missing
+    // colour is black.
+    for (const char* name : {"Z", "A"})
+        if (!file.header().channels().findChannel(name)) throw std::runtime_error(std::string("no deep channel ") + name);
+    const bool hasZBack = file.header().channels().findChannel("ZBack") != nullptr;
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::ptrdiff_t origin = std::ptrdiff_t(dataWindow.min.y) * std::ptrdiff_t(width) + dataWindow.min.x;
     std::vector<unsigned int> counts(pixels);
@@ -360,6 +363,9 @@ DeepImage decodeDeepExr(const std::vector<char>& bytes, const std::string& path)
         for (std::size_t c = 0; c < std::size(kDeepChannels); ++c) pointers[c][i] = first + kDeepChannels[c].offset;
     }
     file.readPixels(dataWindow.min.y, dataWindow.max.y);
+    if (!hasZBack)
+        for (std::vector<DeepSample>& samples : perPixel)
+            for (DeepSample& s : samples) s.zBack = s.z;
     DeepImage image{int(width), int(height)};
     image.assign(perPixel);
     if (displayWindow != dataWindow && displayWindow.min == Imath::V2i(0, 0) && displayWindow.intersects(dataWindow.min) &&

@@ -89,9 +89,12 @@ py::dict deepOf(const sk::DeepImage& deep) {
 sk::DeepImage deepOf(const py::dict& in) {
     if (!in.contains("counts") || !in.contains("samples")) throw streak::Error("deep image: a dict {'counts': (H, W), 'samples': (N, 6)} expected");
     py::array_t<long long, py::array::c_style | py::array::forcecast> counts;
-    try {
-        counts = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(in["counts"]);
-    } catch (const py::error_already_set&) {
+    const py::array given = py::array::ensure(in["counts"]);
+    if (given && (given.dtype().kind() == 'i' || given.dtype().kind() == 'u')) {
+        try {
+            counts = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(given);
+        } catch (const py::error_already_set&) {
+        }
     }
     if (!counts || counts.ndim() != 2) throw streak::Error("deep image: 'counts' must be an integer array of shape (H, W)");
     const FloatArray samples = floats(in["samples"], "deep image 'samples'", 2, py::ssize_t(kDeepColumns), "(N, 6): Z, ZBack, R, G, B, A");
@@ -104,9 +107,14 @@ sk::DeepImage deepOf(const py::dict& in) {
     }
     deep.samples.resize(std::size_t(samples.shape(0)));
     if (!deep.samples.empty()) std::memcpy(deep.samples.data(), samples.data(), deep.samples.size() * sizeof(sk::DeepImage::Sample));
-    if (in.contains("origin") && in.contains("frame")) {
-        const auto origin = in["origin"].cast<std::pair<int, int>>(), frame = in["frame"].cast<std::pair<int, int>>();
-        deep.x = origin.first, deep.y = origin.second, deep.frameWidth = frame.first, deep.frameHeight = frame.second;
+    if (in.contains("origin") != in.contains("frame")) throw streak::Error("deep image: a region has both 'origin' (x, y) and 'frame' (width, height)");
+    if (in.contains("origin")) {
+        try {
+            const auto origin = in["origin"].cast<std::pair<int, int>>(), frame = in["frame"].cast<std::pair<int, int>>();
+            deep.x = origin.first, deep.y = origin.second, deep.frameWidth = frame.first, deep.frameHeight = frame.second;
+        } catch (const py::cast_error&) {
+            throw streak::Error("deep image: 'origin' and 'frame' must be pairs of integers");
+        }
     }
     return deep;
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -356,7 +357,7 @@ TEST(Api, TransparentPassesAndMattesThroughThePublicApi) {
                 ASSERT_EQ(withAlbedo.channel(std::string("albedo.") + "RGB"[c])->values[i], albedo.rgb[3 * i + std::size_t(c)]) << method;
         EXPECT_NE(withAlbedo.rgb, albedo.rgb) << method;  // the beauty stays lit
     }
-    settings.method = "accumulation";
+    settings.method = "post-filter";
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);  // writes no passes
     settings.method = "motion-path", settings.passes = {"normals"};
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);
@@ -403,10 +404,21 @@ TEST(Api, DeepImageThroughThePublicApi) {
     ASSERT_EQ(back.samples.size(), region.samples.size());
     for (std::size_t k = 0; k < back.samples.size(); ++k) EXPECT_EQ(back.samples[k].a, region.samples[k].a);
 
+    // A deep image written from the API must be tidy, as the file says it is.
+    sk::DeepImage untidy = region;
+    std::size_t first = 0;
+    while (first < untidy.counts.size() && untidy.counts[first] < 2) ++first;
+    ASSERT_LT(first, untidy.counts.size());
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < first; ++i) at += untidy.counts[i];
+    std::swap(untidy.samples[at], untidy.samples[at + 1]);
+    EXPECT_THROW(sk::writeDeepImage(untidy, dir.file("untidy.exr")), streak::Error);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("untidy.exr")));
+
     settings.region.reset();
     settings.deepSamples = 0;
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);
-    settings.deepSamples = 16, settings.method = "stochastic";
+    settings.deepSamples = 16, settings.method = "post-filter";
     EXPECT_THROW(sk::Renderer{settings}, streak::Error);  // writes no deep image
 }
 

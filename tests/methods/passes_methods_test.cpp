@@ -18,30 +18,11 @@
 namespace streak {
 namespace {
 
-constexpr int kWidth = 16, kHeight = 4;
+constexpr int kWidth = test::kSweptWallWidth, kHeight = test::kSweptWallHeight;
 
-// "wall" (material "grey") at depth 3 covers x < 6; "sweeper" (material "white") at depth 2, in
-// front of it, has its right edge sweep x from 2 to 14 over the shutter. At pixel centre x_c the
-// sweeper covers s = (14 - x_c) / 12 of the shutter (clamped), the wall the rest where x_c < 6.
-Scene sweptWall() {
-    Scene scene = test::emptyScene(glm::vec3(0.2f));
-    const std::uint32_t grey = test::addMaterial(scene, glm::vec3(0.5f)), white = test::addMaterial(scene, glm::vec3(1.0f));
-    scene.materials[grey].name = "grey", scene.materials[white].name = "white";
-    test::addPixelQuad(scene, test::PixelCamera{kWidth, kHeight, 3.0f}, grey, -20.0f, -1.0f, 6.0f, 5.0f);
-    scene.meshes.back().name = "wall";
-    test::addPixelQuad(scene, test::PixelCamera{kWidth, kHeight, 2.0f}, white, -30.0f, -1.0f, 2.0f, 5.0f, 12.0f, 0.0f);
-    scene.meshes.back().name = "sweeper";
-    validateScene(scene);
-    return scene;
-}
-
-struct Expected {
-    float sweeper, wall;
-};
-Expected expectedAt(int px) {
-    const float xc = float(px) + 0.5f, sweeper = std::clamp((14.0f - xc) / 12.0f, 0.0f, 1.0f);
-    return {sweeper, xc < 6.0f ? 1.0f - sweeper : 0.0f};
-}
+using test::Expected;
+using test::expectedAt;
+using test::sweptWall;
 
 const ImageChannel& channel(const Image& image, const std::string& name) {
     for (const ImageChannel& c : image.channels())
@@ -316,9 +297,35 @@ TEST(PassesMethods, EmbreeWritesItsSampledDeepSamples) {
     expectDeepFlattensToImage(image, true, 1e-5f);
 }
 
+TEST(PassesMethods, AccumulationAndStochasticWriteTheirSampledEstimates) {
+    // 64 instants, or 64 stratified times a sample: coverages within 1/64, as embree's.
+    expectPasses("accumulation", test::withOption("samples", "64"), 1.0f / 64.0f + 1e-5f, 0.05f);
+    expectPasses("stochastic", test::withOption("samples", "64"), 1.0f / 64.0f + 1e-5f, 0.05f);
+}
+
+TEST(PassesMethods, SampledDeepSamplesFlattenToTheImage) {
+    // The swept wall, opaque and with the sweeper translucent (its fragments composited over
+    // the wall): each time's surfaces kept by triangle across the times, which flatten to the
+    // image; the sweeper's alpha within 1/16 of its closed form.
+    Scene translucent = sweptWall();
+    translucent.materials[1].opacity = 0.4f;
+    for (const char* method : {"accumulation", "stochastic"})
+        for (const Scene* scene : std::initializer_list<const Scene*>{&translucent, nullptr}) {
+            SCOPED_TRACE(std::string(method) + (scene ? " translucent" : " opaque"));
+            RenderStats stats;
+            const Image image = renderDeep(method, scene ? *scene : sweptWall(), test::withOption("samples", "16"), 16, true, 2, stats);
+            expectDeepFlattensToImage(image, true, 1e-5f);
+            const std::span<const DeepSample> samples = image.deep()->samples(9, 1);
+            ASSERT_EQ(samples.size(), 2u);
+            EXPECT_NEAR(samples[0].z, 2.0f, 1e-4f);
+            EXPECT_NEAR(samples[0].alpha, (scene ? 0.4f : 1.0f) * expectedAt(9).sweeper, 1.0f / 16.0f + 1e-5f);
+        }
+}
+
 TEST(PassesMethods, OnlyTheMethodsThatWritePassesSaySo) {
-    for (const char* method : {"accumulation", "stochastic", "post-filter", "blur-shell"})
-        EXPECT_FALSE(createRenderer(method, OptionMap())->writesPasses()) << method;
+    for (const char* method : {"motion-path", "analytic", "higher-order", "embree", "accumulation", "stochastic"})
+        EXPECT_TRUE(createRenderer(method, OptionMap())->writesPasses()) << method;
+    for (const char* method : {"post-filter", "blur-shell"}) EXPECT_FALSE(createRenderer(method, OptionMap())->writesPasses()) << method;
 }
 
 }  // namespace

@@ -147,9 +147,11 @@ class RenderTest(unittest.TestCase):
             np.testing.assert_allclose(flat[..., :3], streak.read_image(image), atol=1e-5)
             np.testing.assert_allclose(flat[..., 3], 1.0, atol=1e-5)
         with self.assertRaises(streak.Error):
-            streak.render(scene, method="accumulation", width=16, height=4, deep=True)
+            streak.render(scene, method="post-filter", width=16, height=4, deep=True)
         with self.assertRaises(streak.Error):
-            streak.write_deep_image({"counts": np.ones((2, 2)), "samples": np.zeros((3, 6), np.float32)}, "x.exr")
+            streak.write_deep_image({"counts": np.ones((2, 2), np.int32), "samples": np.zeros((3, 6), np.float32)}, "x.exr")
+        with self.assertRaises(streak.Error):  # counts are whole numbers
+            streak.write_deep_image({"counts": np.full((1, 2), 1.5), "samples": np.zeros((3, 6), np.float32)}, "x.exr")
 
     @unittest.skipUnless(os.path.exists(CESIUM_MAN), "the shared scenes are not beside the checkout")
     def test_gltf_motion_keys_and_bezier_pieces_equal_the_cli(self):

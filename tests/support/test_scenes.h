@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -136,6 +137,32 @@ inline Scene crossingQuads() {
     addMovingQuad(scene, green, corners(c4), corners(c2));
     validateScene(scene);
     return scene;
+}
+
+// A 16 x 4 image of the passes' closed form: "wall" (material "grey") at depth 3 covers x < 6;
+// "sweeper" (material "white") at depth 2, in front of it, has its right edge sweep x from 2 to
+// 14 over the shutter; the background is 0.2. At pixel centre x_c the sweeper covers
+// s = (14 - x_c) / 12 of the shutter (clamped), the wall the rest where x_c < 6 (expectedAt).
+inline constexpr int kSweptWallWidth = 16, kSweptWallHeight = 4;
+inline Scene sweptWall() {
+    Scene scene = emptyScene(glm::vec3(0.2f));
+    const std::uint32_t grey = addMaterial(scene, glm::vec3(0.5f)), white = addMaterial(scene, glm::vec3(1.0f));
+    scene.materials[grey].name = "grey", scene.materials[white].name = "white";
+    addPixelQuad(scene, PixelCamera{kSweptWallWidth, kSweptWallHeight, 3.0f}, grey, -20.0f, -1.0f, 6.0f, 5.0f);
+    scene.meshes.back().name = "wall";
+    addPixelQuad(scene, PixelCamera{kSweptWallWidth, kSweptWallHeight, 2.0f}, white, -30.0f, -1.0f, 2.0f, 5.0f, 12.0f, 0.0f);
+    scene.meshes.back().name = "sweeper";
+    validateScene(scene);
+    return scene;
+}
+
+// Each one's share of pixel column px (at its centre) in sweptWall().
+struct Expected {
+    float sweeper, wall;
+};
+inline Expected expectedAt(int px) {
+    const float xc = float(px) + 0.5f, sweeper = std::clamp((14.0f - xc) / 12.0f, 0.0f, 1.0f);
+    return {sweeper, xc < 6.0f ? 1.0f - sweeper : 0.0f};
 }
 
 }  // namespace streak::test

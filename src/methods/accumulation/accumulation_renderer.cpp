@@ -2,11 +2,13 @@
 
 #include "exposure/instant_frame.h"
 #include "exposure/instant_schedule.h"
+#include "exposure/sample_passes.h"
 
 #include <tbb/enumerable_thread_specific.h>
 
 #include <atomic>
-
+#include <limits>
+#include <optional>
 #include <vector>
 
 namespace streak {
@@ -29,7 +31,10 @@ public:
         std::vector<float> coverage(sum.size(), 0.0f);
         tbb::enumerable_thread_specific<exposure::InstantScratch> scratch;
         exposure::InstantFrame slice;
-        const exposure::InstantDraw draw{settings.shading};
+        // The passes, when asked for: what each sample shows at each instant (SampledPasses).
+        std::optional<exposure::SampledPasses> passes;
+        if (settings.passes.any()) passes.emplace(scene, geometry.triangles(), settings.passes, settings.width, settings.height);
+        const exposure::InstantDraw draw{settings.shading, std::numeric_limits<std::uint32_t>::max(), passes.has_value()};
         double numFragments = 0.0;
 
         const exposure::InstantSchedule schedule(scene.shutter, m_samples, settings.height);
@@ -50,6 +55,9 @@ public:
                 if (rect.y1 < firstRow || rect.y0 > lastRow) return;
                 exposure::InstantScratch& local = scratch.local();
                 fragments += exposure::drawInstantTile(geometry, slice, grid, tile, pattern, draw, local);
+                if (passes)
+                    passes->addTile(rect, pattern.count(), local.opaqueTriangle, local.opaqueInvW, local.opaqueColor, local.translucent, local.transmittance,
+                                    [&](int y) { return schedule.isUniform() ? 1.0f : schedule.weight(s, y); });
                 if (schedule.isUniform()) {
                     raster::addTileToImage(rect, pattern.count(), local.color, 1.0f, sum, settings.width);
                     raster::addTileToImage(rect, pattern.count(), local.coverage, 1.0f, coverage, settings.width);
@@ -73,11 +81,17 @@ public:
         const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
         for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm, coverage[i] *= norm;
         image.setAlpha(std::move(coverage));
+        if (passes)
+            passes->writeTo(settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
+                            norm / float(pattern.count()), image, context.stats);
         context.stats.setCounter("time_samples", m_samples);
         context.stats.setCounter("instants", numInstants);
         context.stats.setCounter("fragments", numFragments);
         return image;
     }
+
+    // Depth, Cryptomatte and deep as sampled at its instants (SampledPasses).
+    bool writesPasses() const override { return true; }
 
 private:
     int m_samples;  ///< shutter times S

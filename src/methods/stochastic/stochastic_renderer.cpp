@@ -1,5 +1,7 @@
 #include "methods/stochastic/stochastic_renderer.h"
 
+#include "exposure/sample_passes.h"
+
 #include "raster/clip.h"
 #include "raster/tile_grid.h"
 #include "raster/translucency.h"
@@ -13,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace streak {
@@ -41,8 +44,13 @@ struct TileScratch {
     std::vector<float> opaqueInvW;
     std::vector<glm::vec3> color;
     std::vector<float> coverage;
-    std::vector<raster::TranslucentFragment> translucent;
+    std::vector<raster::TranslucentFragment> translucent;  ///< `triangle`: a FlatTriangle
     raster::TriangleSetup setup;              ///< reused: large, and tests are many
+    // With the passes: per sample, its opaque surface (~0u: none) and colour before the
+    // translucent ones over it, and SampledPasses' scratch.
+    std::vector<std::uint32_t> opaqueTriangle;
+    std::vector<glm::vec3> opaqueColor;
+    std::vector<float> transmittance;
 };
 
 class StochasticRenderer final : public Renderer {
@@ -57,6 +65,9 @@ public:
         std::vector<raster::PixelBounds> bounds(frame.geometry.triangles().size());
         tbb::enumerable_thread_specific<TileScratch> scratch;
         std::atomic<std::int64_t> tests{0};
+        // The passes, when asked for: what each sample shows at each of its times (SampledPasses).
+        std::optional<exposure::SampledPasses> passes;
+        if (settings.passes.any()) passes.emplace(scene, frame.geometry.triangles(), settings.passes, settings.width, settings.height);
 
         for (int j = 0; j < m_samples; ++j) {
             // Stratum j's times in every row: its share of the exposure, from the top row's
@@ -70,7 +81,7 @@ public:
             }
             PhaseTimer timer(context.stats, "sample+shade");
             grid.forEachTile([&](int tile) {
-                tests += renderTile(frame, grid, tile, j, bounds, scratch.local(), sum);
+                tests += renderTile(frame, grid, tile, j, bounds, scratch.local(), sum, passes ? &*passes : nullptr);
             }, /*includeEmpty=*/true);
             if (context.progress) context.progress->update(double(j + 1) / m_samples);
         }
@@ -78,6 +89,9 @@ public:
         const float norm = 1.0f / float(m_samples);
         for (glm::vec3& p : sum.pixels()) p *= norm;
         for (float& a : sum.alpha()) a *= norm;
+        if (passes)
+            passes->writeTo(settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
+                            norm / float(frame.pattern.count()), sum, context.stats);
         context.stats.setCounter("time_samples_per_position", m_samples);
         context.stats.setCounter("samples_per_pixel", double(m_samples) * frame.pattern.count());
         context.stats.setCounter("triangle_tests", double(tests.load()));
@@ -209,10 +223,15 @@ private:
         std::vector<std::vector<glm::vec4>> clipKeys;  ///< per mesh, static camera only
     };
 
+    // Depth, Cryptomatte and deep as sampled at its times (SampledPasses).
+    bool writesPasses() const override { return true; }
+
     // All samples of stratum j in one tile: times, visibility, shading, translucency; adds the
-    // tile's mean colour (weighted 1/S) to `sum`. Returns the number of triangle tests.
+    // tile's mean colour (weighted 1/S) to `sum`, and what each sample shows to `passes`.
+    // Returns the number of triangle tests.
     std::int64_t renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, int j,
-                            const std::vector<raster::PixelBounds>& bounds, TileScratch& scratch, Image& sum) const {
+                            const std::vector<raster::PixelBounds>& bounds, TileScratch& scratch, Image& sum,
+                            exposure::SampledPasses* passes) const {
         const raster::PixelBounds rect = grid.tileBounds(tile);
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
         const int spp = frame.pattern.count();
@@ -253,7 +272,7 @@ private:
                             continue;
                         if (isTranslucent) {
                             const ShadedColor c = frame.shade(hit, t);
-                            scratch.translucent.push_back({std::uint32_t(i), hit.invW, c.color, c.alpha});
+                            scratch.translucent.push_back({std::uint32_t(i), hit.invW, c.color, c.alpha, index});
                         } else if (hit.invW > scratch.nearest[i].invW) {
                             scratch.nearest[i] = {hit.invW, index};
                         }
@@ -279,7 +298,15 @@ private:
                     if (frame.hit(n.triangle, t, frame.isCameraStatic ? identity : scratch.clipFromWorld[i], X, Y, scratch.setup, hit))
                         scratch.color[i] = frame.shade(hit, t).color, scratch.coverage[i] = 1.0f;
                 }
+        if (passes) {
+            scratch.opaqueColor.assign(scratch.color.begin(), scratch.color.end());
+            scratch.opaqueTriangle.resize(numSamples);
+            for (std::size_t i = 0; i < numSamples; ++i) scratch.opaqueTriangle[i] = scratch.coverage[i] > 0.0f ? scratch.nearest[i].triangle : ~0u;
+        }
         if (!scratch.translucent.empty()) raster::compositeTranslucent(scratch.translucent, scratch.opaqueInvW, scratch.color, scratch.coverage);
+        if (passes)
+            passes->addTile(rect, spp, scratch.opaqueTriangle, scratch.opaqueInvW, scratch.opaqueColor, scratch.translucent, scratch.transmittance,
+                            [](int) { return 1.0f; });
 
         raster::addTileToImage(rect, spp, scratch.color, 1.0f, sum.pixels(), frame.settings.width);
         raster::addTileToImage(rect, spp, scratch.coverage, 1.0f, sum.alpha(), frame.settings.width);
