@@ -656,7 +656,7 @@ int run(int argc, char** argv) {
     render->add_flag("--sample-grid", renderArgs.sampleGrid, "place the --aa samples on the regular N x N grid instead of n-rooks");
     render->add_option("--passes", renderArgs.passes,
                        "passes written beside the colour into the EXR, comma-separated: depth (Z, Z.min), object_id and material_id "
-                       "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order exact; embree, accumulation, stochastic sampled), "
+                       "(Cryptomatte 1.1: CryptoObject00..., CryptoMaterial00...; motion-path, analytic, higher-order, motion-path-gl exact; embree, accumulation, stochastic sampled), "
                        "albedo (albedo.R/G/B: every method, one more render, unlit), normal (normal.X/Y/Z: every method, one more render), "
                        "vector (vector.X/Y/Z/W, Blender's Vector: screen motion in pixels to the frame before and from the frame after; "
                        "CPU methods, scenes with frames, two more renders)");
@@ -664,7 +664,7 @@ int run(int argc, char** argv) {
     CLI::Option* deepOption = render->add_option("--deep", renderArgs.deep,
                        "also write a deep scanline EXR (R G B A Z ZBack, what Nuke's DeepRead takes) to this .exr: per pixel a sample per "
                        "visible surface layer, from the nearest depth it shows at to the farthest, compositing front to back to the image's RGBA "
-                       "(the background's sample at Z 1e10 unless --transparent); motion-path, analytic, higher-order exact; embree, accumulation, stochastic sampled. "
+                       "(the background's sample at Z 1e10 unless --transparent); motion-path, analytic, higher-order, motion-path-gl exact; embree, accumulation, stochastic sampled. "
                        "With --frames, a pattern as -o");
     render->add_option("--deep-samples", renderArgs.deepSamples,
                        "deep samples (surface layers) kept per pixel; the closest in depth are joined past it (deep_layers_merged in --stats)")

@@ -61,9 +61,9 @@ struct RenderSettings {
     // and Z.min, the nearest; 1e10 where nothing shows), "object_id" and "material_id"
     // (Cryptomatte 1.1 layers CryptoObject00... and CryptoMaterial00...: cryptomatteRanks ranked
     // (ID, coverage) pairs of the scene's object and material names, the coverages of a pixel
-    // summing to its alpha): written by motion-path, analytic and higher-order (exact), and by
-    // embree, accumulation and stochastic (sampled: their estimate at their shutter times),
-    // refused by the others (post-filter, blur-shell, the GL twins). "albedo" (albedo.R/G/B: the unlit colour of what shows,
+    // summing to its alpha): written by motion-path, analytic, higher-order and motion-path-gl
+    // (exact), and by embree, accumulation and stochastic (sampled: their estimate at their
+    // shutter times), refused by the others (post-filter, blur-shell, the other GL twins). "albedo" (albedo.R/G/B: the unlit colour of what shows,
     // premultiplied as the colour): every method, by one more render shaded unlit. "normal"
     // (normal.X/Y/Z: the world-space unit normal of what shows, averaged and premultiplied
     // likewise): every method, by one more render. "vector" (vector.X/Y/Z/W, Blender's Vector:

@@ -191,7 +191,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (s.passes.any() && !m_impl->method->writesPasses())
         throw Error("method " + settings.method + " does not write the depth, Cryptomatte and deep passes (" +
                     std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : s.passes.materialId ? "material_id" : "deep") +
-                    "): motion-path, analytic and higher-order write them exactly, embree, accumulation and stochastic sampled");
+                    "): motion-path, analytic, higher-order and motion-path-gl write them exactly, embree, accumulation and stochastic sampled");
 }
 
 Renderer::~Renderer() = default;

@@ -1,5 +1,6 @@
 """The Python module as a user calls it: a built-in scene against the CLI's EXR, a scene from
 numpy arrays against its closed form, and bad arrays raising one clear streak.Error."""
+import json
 import os
 import struct
 import subprocess
@@ -107,6 +108,69 @@ class RenderTest(unittest.TestCase):
             rows = {r["pass"]: r for r in streak.compare_passes(path, path)}
             self.assertTrue(all(r["rms"] == 0 for r in rows.values()))
             self.assertTrue(all(f"CryptoObject {n}" in rows for n in names))
+
+    def test_openimageio_reads_the_passes_and_their_cryptomatte_header(self):
+        # OpenImageIO, a compositor's reader, reads the multi-layer EXR: its channels are
+        # streak's, and the Cryptomatte header is the specification's (each type keyed by the
+        # first 7 hex digits of its name's MurmurHash3, a manifest mapping names to the hashes
+        # whose float conversions are the IDs in the channels; hashes computed here anew).
+        try:
+            import OpenImageIO as oiio
+        except ImportError:
+            self.skipTest("OpenImageIO's Python (python3-openimageio) is not installed")
+
+        def murmur3_32(data, seed=0):
+            c1, c2, h = 0xcc9e2d51, 0x1b873593, seed
+            rotl = lambda x, r: ((x << r) | (x >> (32 - r))) & 0xffffffff  # noqa: E731
+            tail = len(data) & ~3
+            for i in range(0, tail, 4):
+                k = rotl((int.from_bytes(data[i:i + 4], "little") * c1) & 0xffffffff, 15) * c2 & 0xffffffff
+                h = (rotl(h ^ k, 13) * 5 + 0xe6546b64) & 0xffffffff
+            k = int.from_bytes(data[tail:] + b"\0" * (4 - len(data[tail:])), "little") if len(data) & 3 else 0
+            if k:
+                h ^= rotl((k * c1) & 0xffffffff, 15) * c2 & 0xffffffff
+            h ^= len(data)
+            for shift, mul in ((16, 0x85ebca6b), (13, 0xc2b2ae35)):
+                h = ((h ^ (h >> shift)) * mul) & 0xffffffff
+            return h ^ (h >> 16)
+
+        def id_of(name):
+            h = murmur3_32(name.encode())
+            if (h >> 23) & 255 in (0, 255):  # the specification's conversion: no denormal, inf or NaN
+                h ^= 1 << 23
+            return struct.unpack("<f", struct.pack("<I", h))[0], f"{murmur3_32(name.encode()):08x}"
+
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "passes.exr")
+            subprocess.run([CLI, "render", "builtin:crossing", "-m", "motion-path", "--width", "64", "--height", "48", "--transparent",
+                            "--passes", "depth,object_id,material_id", "-o", path], check=True)
+            buf = oiio.ImageBuf(path)
+            spec = buf.spec()
+            names = list(spec.channelnames)
+            pixels = buf.get_pixels(oiio.FLOAT)
+            layers = streak.read_layers(path)
+            for channel in ("Z", "Z.min", "CryptoObject00.r", "CryptoObject00.g", "CryptoMaterial01.a"):
+                np.testing.assert_array_equal(pixels[..., names.index(channel)], layers[channel])
+            alpha = pixels[..., names.index("A")]
+            attributes = {a.name: a.value for a in spec.extra_attribs if a.name.startswith("cryptomatte/")}
+            for type_name in ("CryptoObject", "CryptoMaterial"):
+                key = f"{murmur3_32(type_name.encode()):08x}"[:7]
+                self.assertEqual(attributes[f"cryptomatte/{key}/name"], type_name)
+                self.assertEqual(attributes[f"cryptomatte/{key}/hash"], "MurmurHash3_32")
+                self.assertEqual(attributes[f"cryptomatte/{key}/conversion"], "uint32_to_float32")
+                manifest = json.loads(attributes[f"cryptomatte/{key}/manifest"])
+                self.assertEqual(len(manifest), 2)
+                mattes = np.zeros_like(alpha)
+                ranks = sorted({n.split(".")[0] for n in names if n.startswith(type_name)})
+                for name, hexid in manifest.items():
+                    float_id, hex_id = id_of(name)
+                    self.assertEqual(hexid, hex_id)
+                    for rank in ranks:
+                        for id_channel, coverage_channel in (("r", "g"), ("b", "a")):
+                            ids = pixels[..., names.index(f"{rank}.{id_channel}")]
+                            mattes += np.where(ids == np.float32(float_id), pixels[..., names.index(f"{rank}.{coverage_channel}")], 0.0)
+                np.testing.assert_allclose(mattes, alpha, atol=1e-5)  # every coverage belongs to a manifest name
+                self.assertGreater(alpha.max(), 0.99)
 
     def test_deep_comes_back_as_arrays_and_openimageio_flattens_it_to_the_image(self):
         # The sweeping quad over a transparent background: one deep sample a covered pixel, at

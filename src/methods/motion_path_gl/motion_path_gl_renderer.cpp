@@ -1,5 +1,6 @@
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
 
+#include "exposure/sample_passes.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/span_shading.h"
 #include "gpu/fragment_lists.h"
@@ -37,8 +38,42 @@ constexpr std::size_t kInitialNodesPerSample = 4;
 
 // The resolve pass's counters (ResolveCounterBuffer).
 struct ResolveCounters {
-    std::uint32_t intervalOverflowSamples, splits, cycles, shadedSpans, intervals, maxIntervals;
+    std::uint32_t intervalOverflowSamples, splits, cycles, shadedSpans, intervals, maxIntervals, shownOverflowSamples;
 };
+
+// What shows in a sample, for the passes (the resolve's ShownRecord, std430): kMaxShown a sample.
+struct ShownRecord {
+    std::uint32_t triangle;  ///< ~0u: none
+    float share, depth, nearest, farthest;
+    float r, g, b;
+};
+static_assert(sizeof(ShownRecord) == 32);
+constexpr int kMaxShown = 8;
+
+// The passes from the resolve's records: each pixel's samples' surfaces into PixelPasses.
+void writeShownPasses(const Scene& scene, const FlatGeometry& geometry, const RenderSettings& settings, const gpu::SampleGrid& grid,
+                      const std::vector<ShownRecord>& records, Image& image, RenderStats& stats) {
+    exposure::PassFrame frame(scene, settings.passes, settings.width, settings.height);
+    exposure::PixelPasses pixel;
+    const float sampleWeight = 1.0f / float(grid.aa * grid.aa);
+    for (int py = 0; py < grid.height; ++py)
+        for (int px = 0; px < grid.width; ++px) {
+            pixel.begin(frame);
+            for (int j = 0; j < grid.aa; ++j)
+                for (int i = 0; i < grid.aa; ++i) {
+                    const std::size_t sample = std::size_t(py * grid.aa + j) * std::size_t(grid.samplesWide()) + std::size_t(px * grid.aa + i);
+                    for (int k = 0; k < kMaxShown; ++k) {
+                        const ShownRecord& r = records[sample * kMaxShown + std::size_t(k)];
+                        if (r.triangle >= geometry.triangles().size()) break;
+                        const FlatTriangle& t = geometry.triangles()[r.triangle];
+                        pixel.add({r.triangle, t.mesh, t.material, r.share, r.depth, r.nearest, r.farthest});
+                        pixel.addColor(r.triangle, glm::vec3(r.r, r.g, r.b));
+                    }
+                }
+            pixel.finish(frame, px, py, sampleWeight);
+        }
+    frame.writeTo(image, stats);
+}
 
 void setInt(GLuint program, const char* name, int value) { glProgramUniform1i(program, glGetUniformLocation(program, name), value); }
 
@@ -60,6 +95,7 @@ public:
         }
         std::map<std::string, std::string> defines = buffers->defines();
         defines["MAX_INTERVALS"] = std::to_string(m_options.maxIntervals);
+        defines["MAX_SHOWN"] = std::to_string(kMaxShown);
         const gpu::GlProgram& paths = gpu::buildProgram(
             {{GL_VERTEX_SHADER, {"scene.glsl", "motion_path_gl.vert.glsl"}},
              {GL_GEOMETRY_SHADER, {"scene.glsl", "motion_path_gl.geom.glsl"}},
@@ -76,6 +112,16 @@ public:
         setInt(resolve.id(), "u_textureSamples", m_options.spanShading.maxTextureTaps);
         glProgramUniform1f(resolve.id(), glGetUniformLocation(resolve.id(), "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
         setInt(resolve.id(), "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
+        // The passes' records (a token buffer without them), within the GPU memory budget.
+        const bool writesSurfaces = settings.passes.any();
+        const std::size_t shownBytes = writesSurfaces ? grid.numSamples() * kMaxShown * sizeof(ShownRecord) : 16;
+        if (shownBytes > std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20))
+            throw Error("method 'motion-path-gl': the passes need " + std::to_string(shownBytes >> 20) + " MB of GPU memory (" +
+                        std::to_string(kMaxShown * sizeof(ShownRecord)) + " bytes a sample), past --gpu-memory " + std::to_string(m_options.gpuMemoryMb));
+        const gpu::GlBuffer shownBuffer(shownBytes);
+        const std::uint32_t none = ~0u;
+        glClearNamedBufferData(shownBuffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+        setInt(resolve.id(), "u_writeSurfaces", writesSurfaces ? 1 : 0);
 
         const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
         const gpu::GlFramebuffer framebuffer;  // no attachments: pass 1 writes only its lists
@@ -130,6 +176,7 @@ public:
             buffers->bind(resolve.id());
             lists->bind(resolve.id(), 7, sampleBudget);
             resolveCounters.bindStorage(9);
+            shownBuffer.bindStorage(10);
             glBindImageTexture(2, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             timer.begin("resolve");
             glDispatchCompute(GLuint((grid.samplesWide() + 7) / 8), GLuint((grid.samplesHigh() + 7) / 8), 1);
@@ -142,6 +189,13 @@ public:
         timer.report(context.stats);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         Image image = gpu::readSampleGrid(output, grid);
+        if (writesSurfaces) {
+            std::vector<ShownRecord> records(grid.numSamples() * kMaxShown);
+            shownBuffer.download(records.data(), records.size() * sizeof(ShownRecord));
+            gpu::checkGlError("reading motion-path-gl's passes back");
+            writeShownPasses(scene, geometry, settings, grid, records, image, context.stats);
+            context.stats.setCounter("shown_overflow_samples", double(m_counters.shownOverflowSamples));
+        }
         if (context.progress) context.progress->update(1.0);
 
         const double numSamples = double(grid.numSamples());
@@ -173,6 +227,9 @@ public:
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
         return image;
     }
+
+    // Depth, Cryptomatte and deep from the resolve's record of what shows in each sample.
+    bool writesPasses() const override { return true; }
 
 private:
     Options m_options;

@@ -1,7 +1,10 @@
 // The GL methods against their CPU twins, on Mesa's llvmpipe in CI (or any GL 4.5 driver).
 
 #include "gpu/gl_context.h"
+#include "image/cryptomatte.h"
+#include "image/deep_image.h"
 #include "image/metrics.h"
+#include "util/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/scene.h"
 #include "support/render.h"
@@ -10,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,6 +101,66 @@ TEST_P(MotionPathGlAgreement, MatchesCpuMotionPath) {
 
 INSTANTIATE_TEST_SUITE_P(BuiltinScenes, MotionPathGlAgreement,
                          testing::Values("rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"));
+
+// motion-path-gl's passes come from its resolve's record of what shows in each sample: on the
+// swept wall (test::sweptWall) each object's Cryptomatte coverage and the depth are their
+// closed forms, and the deep samples flatten to the image; with the sweeper translucent too.
+TEST(MotionPathGl, WritesTheClosedFormPassesAndDeepSamples) {
+    const int width = test::kSweptWallWidth, height = test::kSweptWallHeight;
+    for (const bool isTranslucent : {false, true}) {
+        SCOPED_TRACE(isTranslucent ? "translucent" : "opaque");
+        Scene scene = test::sweptWall();
+        if (isTranslucent) scene.materials[1].opacity = 0.4f;
+        std::unique_ptr<Renderer> renderer = createRenderer("motion-path-gl", OptionMap());
+        ASSERT_TRUE(renderer->writesPasses());
+        RenderSettings settings;
+        settings.width = width, settings.height = height, settings.shading = ShadingMode::Unlit;
+        settings.passes.depth = settings.passes.objectId = settings.passes.deep = true;
+        settings.passes.cryptoRanks = 2;
+        RenderStats stats;
+        RenderContext context{stats};
+        const Image image = renderer->render(scene, settings, context);
+        ASSERT_NE(image.deep(), nullptr);
+        EXPECT_EQ(stats.counter("shown_overflow_samples"), 0.0);
+        auto values = [&](const std::string& name) -> const std::vector<float>& {
+            for (const ImageChannel& c : image.channels())
+                if (c.name == name) return c.values;
+            throw std::runtime_error("no channel " + name);
+        };
+        const float opacity = isTranslucent ? 0.4f : 1.0f;
+        for (int py = 0; py < height; ++py)
+            for (int px = 0; px < width; ++px) {
+                SCOPED_TRACE("pixel " + std::to_string(px) + "," + std::to_string(py));
+                const std::size_t i = std::size_t(py) * width + std::size_t(px);
+                const test::Expected e = test::expectedAt(px);
+                // Translucent, the sweeper takes its opacity of its share, the wall the rest.
+                const float sweeper = opacity * e.sweeper, wall = e.wall + (isTranslucent && px < 6 ? (1.0f - opacity) * e.sweeper : 0.0f);
+                float sweeperMatte = 0.0f, wallMatte = 0.0f;
+                for (const char* rank : {"CryptoObject00.r", "CryptoObject00.b"}) {
+                    const std::string coverage = std::string(rank).substr(0, 15) + (rank[15] == 'r' ? "g" : "a");
+                    const float id = values(rank)[i], share = values(coverage)[i];
+                    if (id == cryptomatteId("sweeper")) sweeperMatte += share;
+                    if (id == cryptomatteId("wall")) wallMatte += share;
+                }
+                // (Translucent lists are resolved in 128 slices of the shutter, as on the CPU.)
+                const float tolerance = isTranslucent ? 1.0f / 128.0f + 1e-5f : 1e-5f;
+                EXPECT_NEAR(sweeperMatte, sweeper, tolerance);
+                EXPECT_NEAR(wallMatte, wall, tolerance);
+                if (sweeper + wall > 0.0f) EXPECT_NEAR(values("Z")[i], (2.0f * sweeper + 3.0f * wall) / (sweeper + wall), 100.0f * tolerance);
+                else EXPECT_EQ(values("Z")[i], kEmptyDepth);
+                glm::vec4 flat(0.0f);
+                for (const DeepSample& d : image.deep()->samples(px, py)) flat += (1.0f - flat.w) * glm::vec4(d.color, d.alpha);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(flat[c], image.at(px, py)[c], 1e-5f);
+                EXPECT_NEAR(flat.w, 1.0f, 1e-5f);
+            }
+    }
+    // Within --gpu-memory: 256 bytes a sample, past it refused in one line.
+    RenderSettings big;
+    big.width = 128, big.height = 64, big.aa = 8, big.passes.depth = true;
+    RenderStats stats;
+    RenderContext context{stats};
+    EXPECT_THROW(createRenderer("motion-path-gl", test::withOption("gpu-memory", "1"))->render(test::sweptWall(), big, context), Error);
+}
 
 // Both span texture filters (SpanTextureFilter) agree with the CPU's on a textured scene, and
 // differ from each other there: the option reaches the shader. (Not fence: its bars are a

@@ -5,12 +5,15 @@
 // interval's visible share and the spans where it shows), or with u_maskBits-bit masks of the
 // row's exposure (u_exactWeights 0, the paper's; per-slice transmittance when translucent),
 // and shades only the visible opaque pieces, wholly visible pieces of one triangle that abut
-// merged first (exposure/visible_pieces.cpp).
+// merged first (exposure/visible_pieces.cpp). With u_writeSurfaces it also writes, per sample,
+// what shows there for the passes (exposure::PixelPasses on the CPU): each surface's triangle,
+// share, depths and the colour it adds.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int u_maskBits;
 uniform int u_sortIntervals;
 uniform int u_exactWeights;
+uniform int u_writeSurfaces;
 
 struct PathNode {
     uint segment;
@@ -28,7 +31,75 @@ layout(std430, binding = 9) buffer ResolveCounterBuffer {
     uint shadedSpans;
     uint intervalCount;
     uint maxIntervalCount;
+    uint shownOverflowSamples;
 };
+
+// What shows in each sample, MAX_SHOWN records a sample (the buffer comes cleared to all ones:
+// triangle 0xffffffff is no record): a triangle, its share of the sample, its mean depth over
+// the time it shows and the nearest and farthest, and the colour it adds (its colour times its
+// share). A sample's pieces of one triangle are one record; past MAX_SHOWN (a sample swept by
+// many small triangles of one mesh) a triangle joins the record of its mesh nearest to it in
+// depth, so each object's share, depth and colour stay whole; only a sample showing more than
+// MAX_SHOWN meshes loses some (counted).
+struct ShownRecord {
+    uint triangle;
+    float share, depth, nearest, farthest;
+    float r, g, b;
+};
+layout(std430, binding = 10) writeonly buffer ShownBuffer { ShownRecord shownRecords[]; };
+ShownRecord shown[MAX_SHOWN];
+int numShown = 0;
+bool isShownOverflowing = false;
+
+// Adds a surface to record k (depths: the mean, the nearest and the farthest).
+void joinShown(int k, float share, vec3 depths, vec3 color) {
+    float total = shown[k].share + share;
+    shown[k].depth = (shown[k].depth * shown[k].share + depths.x * share) / total;
+    shown[k].share = total;
+    shown[k].nearest = min(shown[k].nearest, depths.y);
+    shown[k].farthest = max(shown[k].farthest, depths.z);
+    shown[k].r += color.r;
+    shown[k].g += color.g;
+    shown[k].b += color.b;
+}
+
+uint meshOfTriangle(uint tri) { return vertexInfo[triangles[tri].x].x; }
+
+void showSurface(uint tri, float share, vec3 depths, vec3 color) {
+    if (u_writeSurfaces == 0 || !(share > 0.0)) return;
+    for (int k = 0; k < numShown; ++k) {
+        if (shown[k].triangle == tri) {
+            joinShown(k, share, depths, color);
+            return;
+        }
+    }
+    if (numShown < MAX_SHOWN) {
+        shown[numShown++] = ShownRecord(tri, share, depths.x, depths.y, depths.z, color.r, color.g, color.b);
+        return;
+    }
+    uint mesh = meshOfTriangle(tri);
+    int nearest = -1;
+    float gap = 0.0;
+    for (int k = 0; k < numShown; ++k) {
+        if (meshOfTriangle(shown[k].triangle) != mesh) continue;
+        float g = max(0.0, max(shown[k].nearest - depths.z, depths.y - shown[k].farthest));
+        if (nearest < 0 || g < gap) {
+            nearest = k;
+            gap = g;
+        }
+    }
+    if (nearest < 0) {
+        isShownOverflowing = true;
+        return;
+    }
+    joinShown(nearest, share, depths, color);
+}
+
+// An interval's depths over [t0, t1]: at the middle (linear), the nearer end and the farther.
+vec3 depthsOver(Interval interval, float t0, float t1) {
+    float d0 = depthAt(interval, t0), d1 = depthAt(interval, t1);
+    return vec3(depthAt(interval, 0.5 * (t0 + t1)), min(d0, d1), max(d0, d1));
+}
 
 Interval intervals[MAX_INTERVALS];
 float weights[MAX_INTERVALS];
@@ -41,13 +112,16 @@ float weights[MAX_INTERVALS];
 const int kMaxPieces = 2 * MAX_INTERVALS;
 uint pieceTriangles[kMaxPieces];
 vec4 pieces[kMaxPieces];  // t0, t1, weight, 1 when whole
+vec3 pieceDepths[kMaxPieces];  // for the passes: depthsOver the piece
 int numPieces = 0;
 
 float measure(float t0, float t1) { return g_window.isIdentity ? t1 - t0 : exposureAt(g_window, t1) - exposureAt(g_window, t0); }
 
-void addPiece(uint tri, float t0, float t1, float weight, bool isWhole) {
+// A piece of interval i.
+void addPiece(int i, uint tri, float t0, float t1, float weight, bool isWhole) {
     if (numPieces == kMaxPieces) return;
     pieceTriangles[numPieces] = tri;
+    pieceDepths[numPieces] = depthsOver(intervals[i], t0, t1);
     pieces[numPieces++] = vec4(t0, t1, weight, isWhole ? 1.0 : 0.0);
 }
 
@@ -72,11 +146,11 @@ float resolveOpaqueExact(int n) {
             lo = min(lo, covered[c].x);
             hi = max(hi, covered[c].y);
             float shown = shownFrom < covered[c].x && !isShaded ? measure(shownFrom, covered[c].x) : 0.0;
-            if (shown > 0.0) addPiece(tri, shownFrom, covered[c].x, shown, true);
+            if (shown > 0.0) addPiece(i, tri, shownFrom, covered[c].x, shown, true);
             shownFrom = max(shownFrom, covered[c].y);
         }
         float shown = shownFrom < t1 && !isShaded ? measure(shownFrom, t1) : 0.0;
-        if (shown > 0.0) addPiece(tri, shownFrom, t1, shown, true);
+        if (shown > 0.0) addPiece(i, tri, shownFrom, t1, shown, true);
         float visible = max(0.0, measure(t0, t1) - hidden);
         weights[i] = visible;
         coveredLength += visible;
@@ -237,6 +311,7 @@ void main() {
         uint tri = intervals[i].segment / uint(u_numSegments);
         if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
             sum += intervals[i].color.rgb * weights[i];
+            showSurface(tri, weights[i], depthsOver(intervals[i], intervals[i].t0, intervals[i].t1), intervals[i].color.rgb * weights[i]);
             continue;
         }
         if (isExact) continue;
@@ -250,7 +325,7 @@ void main() {
             for (int w = 0; w < kMaskWords; ++w) bits += bitCount(mask[w]);
             isWhole = weights[i] * float(u_maskBits) >= float(bits) - 0.5;
         }
-        addPiece(tri, intervals[i].t0, intervals[i].t1, weights[i], isWhole);
+        addPiece(i, tri, intervals[i].t0, intervals[i].t1, weights[i], isWhole);
     }
     int shaded = 0;
 
@@ -259,26 +334,38 @@ void main() {
         for (int j = i; j > 0; --j) {
             uint ta = pieceTriangles[j - 1], tb = pieceTriangles[j];
             vec4 a = pieces[j - 1], b = pieces[j];
+            vec3 da = pieceDepths[j - 1], db = pieceDepths[j];
             if (!(tb < ta || (tb == ta && b.x < a.x))) break;
             pieceTriangles[j - 1] = tb;
             pieceTriangles[j] = ta;
             pieces[j - 1] = b;
             pieces[j] = a;
+            pieceDepths[j - 1] = db;
+            pieceDepths[j] = da;
         }
     // Abutting whole pieces of one triangle are one span.
     for (int i = 0; i < numPieces;) {
         uint tri = pieceTriangles[i];
         float t0 = pieces[i].x, t1 = pieces[i].y, weight = pieces[i].z;
+        vec3 depths = vec3(pieceDepths[i].x * weight, pieceDepths[i].yz);
         bool isWhole = pieces[i].w > 0.5;
         int j = i + 1;
         for (; j < numPieces && isWhole && pieces[j].w > 0.5 && pieceTriangles[j] == tri && pieces[j].x == t1; ++j) {
             t1 = pieces[j].y;
             weight += pieces[j].z;
+            depths = vec3(depths.x + pieceDepths[j].x * pieces[j].z, min(depths.y, pieceDepths[j].y), max(depths.z, pieceDepths[j].z));
         }
-        sum += shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
+        vec3 color = shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
+        sum += color;
+        showSurface(tri, weight, vec3(depths.x / weight, depths.yz), color);
         ++shaded;
         i = j;
     }
     atomicAdd(shadedSpans, uint(shaded));
     imageStore(u_output, s, vec4(sum, 1.0 - background));
+    if (u_writeSurfaces != 0) {
+        uint first = (uint(s.y) * uint(u_viewport.x) + uint(s.x)) * uint(MAX_SHOWN);
+        for (int k = 0; k < numShown; ++k) shownRecords[first + uint(k)] = shown[k];
+        if (isShownOverflowing) atomicAdd(shownOverflowSamples, 1u);
+    }
 }
