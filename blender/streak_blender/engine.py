@@ -16,6 +16,7 @@ _PASSES = [
     ("use_pass_z", "Depth", 1, "Z", "VALUE", "depth", ["Z"]),
     ("use_pass_normal", "Normal", 3, "XYZ", "VECTOR", "normal", ["normal.X", "normal.Y", "normal.Z"]),
     ("use_pass_diffuse_color", "DiffCol", 3, "RGB", "COLOR", "albedo", ["albedo.R", "albedo.G", "albedo.B"]),
+    ("use_pass_vector", "Vector", 4, "XYZW", "VECTOR", "vector", ["vector.X", "vector.Y", "vector.Z", "vector.W"]),
 ]
 _CRYPTO = [("use_pass_cryptomatte_object", "CryptoObject", "object_id"),
            ("use_pass_cryptomatte_material", "CryptoMaterial", "material_id")]
@@ -68,10 +69,10 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         width, height = export.image_size(scene)
         started = time.perf_counter()
         self.update_stats("", "streak: evaluating the shutter's keys")
-        meshes, materials, textures, camera, report = export.build(self, depsgraph, settings, height)
+        meshes, materials, textures, camera, frame_cameras, report = export.build(self, depsgraph, settings, height)
         if self.should_stop():
             raise streak.Cancelled("the render was cancelled")
-        sc = streak.Scene.from_meshes(meshes, materials, textures, camera, export.world_colour(scene))
+        sc = streak.Scene.from_meshes(meshes, materials, textures, camera, export.world_colour(scene), frame_cameras=frame_cameras)
         sc = sc.with_shutter(export.shutter_curve(scene), export.rolling_duration(scene))
         for line in report.warnings():
             self.report({"WARNING"}, f"streak: {line}")

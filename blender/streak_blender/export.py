@@ -391,18 +391,24 @@ class Keys:
 
 
 def build(engine, depsgraph, settings, height):
-    """(meshes, materials, textures, camera dict, Report) for streak.Scene.from_meshes."""
+    """(meshes, materials, textures, camera dict, frame cameras, Report) for streak.Scene.from_meshes.
+    With the view layer's Vector pass, each mesh also has its frame_positions and the frame
+    cameras are the camera at the frames before, at and after the shutter's (else None)."""
     scene = depsgraph.scene
     report = Report()
     keys = Keys(engine, depsgraph, scene, engine.should_stop)
     frame = scene.frame_current
     subframe = scene.frame_subframe
     frame_time = frame + subframe
+    wants_vector = depsgraph.view_layer.use_pass_vector
     try:
         times, snaps = keys.choose(settings.keys, settings.key_tolerance, height)
         # The scene at the frame itself: which objects are drawn, and the pose of those whose
         # topology changes over the shutter (they stand there, or move from there by velocity).
         reference = keys.at(frame_time)[0]
+        # The Vector pass's frames: the scene standing still a frame before and after (Blender's
+        # vectors are to the previous frame and from the next, each seen by its own camera).
+        frames = [keys.at(frame_time + d) for d in (-1.0, 0.0, 1.0)] if wants_vector else None
     finally:
         engine.frame_set(frame, subframe)
     report.keys = len(times)
@@ -429,11 +435,29 @@ def build(engine, depsgraph, settings, height):
         else:
             positions = [p.positions for p in poses]
             normals = [p.normals for p in poses]
+        frame_positions = None
+        if frames is not None:
+            # Where the same corners are at each frame: moved by velocity (units per second) from
+            # the frame, or standing still, where the topology changes.
+            frame_positions = []
+            for d, (poses_f, _) in zip((-1.0, 0.0, 1.0), frames):
+                p = poses_f.get(key)
+                if p is not None and p.signature == at_frame.signature:
+                    frame_positions.append(p.positions)
+                elif at_frame.velocity is not None:
+                    frame_positions.append(at_frame.positions + at_frame.velocity * (d / fps))
+                else:
+                    frame_positions.append(at_frame.positions)
         if bake:
             # Each key's corners relative to that key's camera, zoom included, seen by a still camera.
             zoom = [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in cameras]
             positions = [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in zip(cameras, positions, zoom)]
             normals = [n @ c.rotation for c, n in zip(cameras, normals)]
+            if frame_positions is not None:
+                # The frames' corners likewise, each relative to its frame's camera.
+                frame_cams = [c for _, c in frames]
+                frame_positions = [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in
+                                   zip(frame_cams, frame_positions, [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in frame_cams])]
         slots = at_frame.slots
         for slot in np.unique(at_frame.material_index):
             tris = np.nonzero(at_frame.material_index == slot)[0]
@@ -449,6 +473,8 @@ def build(engine, depsgraph, settings, height):
                     "name": name}
             if at_frame.uvs is not None:
                 mesh["uvs"] = at_frame.uvs[corners]
+            if frame_positions is not None:
+                mesh["frame_positions"] = np.stack([p[corners] for p in frame_positions]).astype(np.float32)
             meshes.append(mesh)
             report.triangles += len(tris)
         report.objects += 1
@@ -462,16 +488,19 @@ def build(engine, depsgraph, settings, height):
         camera["position_end"], camera["target_end"], camera["up_end"] = end["position"], end["target"], end["up"]
     camera["fov"] = math.degrees(cameras[0].fov)
     camera["znear"] = max(1e-6, float(scene.camera.data.clip_start))
+    frame_cameras = None
+    if frames is not None:
+        if bake:
+            frame_cameras = [{k: camera[k] for k in ("position", "target", "up", "fov", "znear")} for _ in frames]
+        else:
+            frame_cameras = [dict(c.pose(), fov=math.degrees(c.fov), znear=camera["znear"]) for _, c in frames]
     if scene.camera.data.shift_x != 0.0 or scene.camera.data.shift_y != 0.0:
         report.unsupported.append("the camera's shift is ignored")
     if scene.render.pixel_aspect_x != scene.render.pixel_aspect_y:
         report.unsupported.append("pixels are rendered square: the pixel aspect only shapes the field of view")
-    if depsgraph.view_layer.use_pass_vector:
-        report.unsupported.append("the Vector pass is not written: the add-on does not yet evaluate the frames around the shutter's "
-                                  "(streak render --passes vector does, on a glTF export)")
     if bake and depsgraph.view_layer.use_pass_normal:
         report.unsupported.append("the camera's path is carried by the geometry, so the Normal pass is in the camera's space")
-    return meshes, materials.materials, materials.textures, camera, report
+    return meshes, materials.materials, materials.textures, camera, frame_cameras, report
 
 
 def world_colour(scene):

@@ -163,6 +163,13 @@ public:
     // The same scene under another shutter.
     Scene withShutter(const Shutter& shutter) const;
 
+    // A scene made from arrays, with what the vector pass (RenderSettings::passes "vector")
+    // needs, which a file's scene loads itself: each mesh given to fromArrays standing still at
+    // the frame before the shutter's, at it and after it (framePositions[i]: 3 x V x 3 floats,
+    // the frames in that order, V its vertices), and the camera at each (`open` is used).
+    // Throws Error for a scene not made from arrays or arrays of the wrong size.
+    Scene withFrames(const std::vector<std::vector<float>>& framePositions, const std::array<Camera, 3>& frameCameras) const;
+
     // Writes the scene as glTF 2.0: binary (.glb) or text with its buffer inlined (.gltf). Key
     // poses become morph targets under a LINEAR weights animation one-hot at k/(K-1) seconds, so
     // --frame 0 --shutter 24 --fps 24 renders it as streak does.

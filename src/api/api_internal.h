@@ -30,6 +30,14 @@ struct Scene::Impl {
     std::optional<Trail> trail;            ///< the trail a glTF scene was loaded over
     RenderStats loadStats;                 ///< the load's time and the loader's figures
     std::optional<LoadOptions> loadOptions;  ///< how a scene with a clock was loaded (the vector pass loads its frames)
+    std::size_t numArrayMeshes = 0;          ///< a scene from arrays: the meshes given (cleanup.keptMeshes: those kept)
+    // A scene from arrays with its frames (Scene::withFrames): per kept mesh, its vertices at the
+    // frames F - 1, F and F + 1, and the camera at each.
+    struct ArrayFrames {
+        std::vector<std::array<std::vector<glm::vec3>, 3>> positions;
+        std::array<streak::Camera, 3> cameras;
+    };
+    std::optional<ArrayFrames> arrayFrames;
 
     // The scene with its surfaces' motion across the frames around the shutter's (Mesh::
     // framePositions, Scene::frameMotion) for an image of `aspect`: the vector pass's. Throws

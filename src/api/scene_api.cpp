@@ -215,12 +215,56 @@ Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Mater
     scene.camera.zNear = camera.zNear;
     scene.background = backgroundOf(background);
     impl->cleanup = validateScene(scene);
+    impl->numArrayMeshes = meshes.size();
+    return Impl::wrap(std::move(impl));
+}
+
+Scene Scene::withFrames(const std::vector<std::vector<float>>& framePositions, const std::array<Camera, 3>& frameCameras) const {
+    if (m_impl->numArrayMeshes == 0) throw Error("withFrames: the scene is not made from arrays (" + m_impl->spec + " loads its own frames)");
+    if (framePositions.size() != m_impl->numArrayMeshes)
+        throw Error("withFrames: " + std::to_string(framePositions.size()) + " meshes' frames for a scene of " +
+                    std::to_string(m_impl->numArrayMeshes) + " meshes");
+    auto impl = std::make_shared<Impl>(*m_impl);
+    Impl::ArrayFrames frames;
+    const std::vector<std::size_t>& kept = m_impl->cleanup.keptMeshes;
+    for (std::size_t m = 0; m < kept.size(); ++m) {
+        const std::vector<float>& in = framePositions[kept[m]];
+        const std::size_t n = m_impl->scene.meshes[m].numVertices();
+        if (in.size() != 3 * n * 3)
+            throw Error("withFrames: mesh " + std::to_string(kept[m]) + " needs 3 x " + std::to_string(n) + " x 3 floats (its vertices at 3 frames), got " +
+                        std::to_string(in.size()));
+        if (!std::all_of(in.begin(), in.end(), [](float v) { return std::isfinite(v); }))
+            throw Error("withFrames: mesh " + std::to_string(kept[m]) + " has a position that is not finite");
+        std::array<std::vector<glm::vec3>, 3>& out = frames.positions.emplace_back();
+        for (std::size_t k = 0; k < 3; ++k)
+            for (std::size_t v = 0; v < n; ++v) out[k].emplace_back(in[(k * n + v) * 3], in[(k * n + v) * 3 + 1], in[(k * n + v) * 3 + 2]);
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Camera& c = frameCameras[k];
+        if (!(c.verticalFovDegrees > 0.0f && c.verticalFovDegrees < 180.0f) || !(c.zNear > 0.0f))
+            throw Error("withFrames: camera " + std::to_string(k) + ": the field of view must be in (0, 180) degrees and zNear positive");
+        streak::Camera& out = frames.cameras[k];
+        out.open = out.close = poseOf(c.open, "open");
+        out.verticalFov = glm::radians(c.verticalFovDegrees);
+        out.zNear = c.zNear;
+    }
+    impl->arrayFrames = std::move(frames);
     return Impl::wrap(std::move(impl));
 }
 
 streak::Scene Scene::Impl::withFrameMotion(float aspect) const {
+    if (arrayFrames) {
+        streak::Scene out = scene;
+        FrameMotion motion;
+        for (std::size_t m = 0; m < out.meshes.size(); ++m)
+            for (std::size_t k = 0; k < 3; ++k) out.meshes[m].framePositions[k] = arrayFrames->positions[m][k];
+        for (std::size_t k = 0; k < 3; ++k) motion.clipFromWorld[k] = arrayFrames->cameras[k].clipFromWorld(0.0f, aspect);
+        out.frameMotion = motion;
+        return out;
+    }
     if (!loadOptions || trail)
-        throw Error("the vector pass needs a scene with frames: a glTF, OBJ or PLY file loaded over a shutter (" + spec + " has none)");
+        throw Error("the vector pass needs a scene with frames: a glTF, OBJ or PLY file loaded over a shutter, or arrays given theirs (Scene::withFrames; " +
+                    spec + " has none)");
     const LoadOptions& main = *loadOptions;
     const double open = shutterOpenFrame(parseShutterPosition(main.shutterPosition), main.frame, main.shutterFrames);
     const bool isFramed = loadStats.info().count("camera_source") && loadStats.info().at("camera_source") == "framed";

@@ -122,20 +122,24 @@ void PixelPasses::compact() {
     m_deep.resize(n);
 }
 
-SampledPasses::SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height)
-    : m_frame(scene, request, width, height), m_triangles(triangles), m_width(width), m_pixels(std::size_t(width) * std::size_t(height)) {
+SampledPasses::SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height,
+                             const raster::PixelBounds& pixels, float sampleWeight)
+    : m_frame(scene, request, width, height), m_triangles(triangles), m_bounds(pixels), m_sampleWeight(sampleWeight),
+      m_pixels(std::size_t(pixels.x1 - pixels.x0 + 1) * std::size_t(pixels.y1 - pixels.y0 + 1)) {
     for (PixelPasses& pixel : m_pixels) pixel.begin(m_frame);
 }
 
 void SampledPasses::add(PixelPasses& pixel, std::uint32_t triangle, float share, float depth, const glm::vec3& color) {
+    if (!(share > 0.0f)) return;
     const FlatTriangle& t = m_triangles[triangle];
     pixel.add({triangle, t.mesh, t.material, share, depth, depth, depth});
     pixel.addColor(triangle, color);
 }
 
-void SampledPasses::writeTo(const raster::PixelBounds& pixels, float sampleWeight, Image& image, RenderStats& stats) {
-    for (int y = pixels.y0; y <= pixels.y1; ++y)
-        for (int x = pixels.x0; x <= pixels.x1; ++x) m_pixels[std::size_t(y) * std::size_t(m_width) + std::size_t(x)].finish(m_frame, x, y, sampleWeight);
+void SampledPasses::writeTo(Image& image, RenderStats& stats) {
+    std::size_t i = 0;
+    for (int y = m_bounds.y0; y <= m_bounds.y1; ++y)
+        for (int x = m_bounds.x0; x <= m_bounds.x1; ++x) m_pixels[i++].finish(m_frame, x, y, 1.0f);  // shares came weighed
     m_frame.writeTo(image, stats);
 }
 

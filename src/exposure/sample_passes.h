@@ -100,10 +100,14 @@ private:
 // written at the end. Their estimate converges to the exact methods' as the times grow.
 class SampledPasses {
 public:
-    SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height);
+    // The pixels of `pixels` (the render's region, in the width x height frame) are kept; each
+    // sample at each time weighs sampleWeight in its pixel's passes (1 / (samples x times) for the
+    // box filter), applied as it is added so that many times sum without losing precision.
+    SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height,
+                  const raster::PixelBounds& pixels, float sampleWeight);
 
     // One tile's samples (pixel-major in rect, spp a pixel) at one time, each weighed
-    // weightOfRow(row): the opaque surface opaqueTriangle[i] (a FlatTriangle; ~0u: none) at
+    // weightOfRow(row) (times sampleWeight): the opaque surface opaqueTriangle[i] (a FlatTriangle; ~0u: none) at
     // 1 / opaqueInvW[i], shaded opaqueColor[i], behind the translucent fragments that
     // compositeTranslucent sorted (their `triangle` a FlatTriangle too). `transmittance` is
     // the caller's scratch.
@@ -112,38 +116,43 @@ public:
                  std::span<const glm::vec3> opaqueColor, const std::vector<raster::TranslucentFragment>& sorted,
                  std::vector<float>& transmittance, WeightOfRow&& weightOfRow) {
         const int tileWidth = rect.x1 - rect.x0 + 1;
-        auto pixelOf = [&](std::size_t sample, int& x, int& y) -> PixelPasses& {
+        // A tile may reach past the region: its pixels there are not kept.
+        auto pixelOf = [&](std::size_t sample, int& x, int& y) -> PixelPasses* {
             const int p = int(sample / std::size_t(spp));
             x = rect.x0 + p % tileWidth, y = rect.y0 + p / tileWidth;
-            return m_pixels[std::size_t(y) * std::size_t(m_width) + std::size_t(x)];
+            if (x < m_bounds.x0 || x > m_bounds.x1 || y < m_bounds.y0 || y > m_bounds.y1) return nullptr;
+            return &m_pixels[std::size_t(y - m_bounds.y0) * std::size_t(m_bounds.x1 - m_bounds.x0 + 1) + std::size_t(x - m_bounds.x0)];
         };
         transmittance.assign(opaqueTriangle.size(), 1.0f);
         raster::forEachCompositedFragment(sorted, opaqueInvW, std::span<float>(transmittance), [&](const raster::TranslucentFragment& f, float share) {
             int x = 0, y = 0;
-            add(pixelOf(f.sample, x, y), f.triangle, share * weightOfRow(y), 1.0f / f.invW, f.color * (share * weightOfRow(y)));
+            PixelPasses* pixel = pixelOf(f.sample, x, y);
+            const float weight = share * weightOfRow(y) * m_sampleWeight;
+            if (pixel) add(*pixel, f.triangle, weight, 1.0f / f.invW, f.color * weight);
         });
         for (std::size_t i = 0; i < opaqueTriangle.size(); ++i) {
             int x = 0, y = 0;
-            PixelPasses& pixel = pixelOf(i, x, y);
+            PixelPasses* pixel = pixelOf(i, x, y);
+            if (!pixel) continue;
             if (opaqueTriangle[i] != ~0u && opaqueInvW[i] > 0.0f) {
-                const float share = transmittance[i] * weightOfRow(y);
-                add(pixel, opaqueTriangle[i], share, 1.0f / opaqueInvW[i], opaqueColor[i] * share);
+                const float share = transmittance[i] * weightOfRow(y) * m_sampleWeight;
+                add(*pixel, opaqueTriangle[i], share, 1.0f / opaqueInvW[i], opaqueColor[i] * share);
             }
-            if ((i + 1) % std::size_t(spp) == 0 && m_frame.request().deep) pixel.compact();
+            if ((i + 1) % std::size_t(spp) == 0 && m_frame.request().deep) pixel->compact();
         }
     }
 
-    // Writes the pixels of `pixels` (the render's region) into the frame, each sample at each
-    // time weighing sampleWeight, and the frame into `image`.
-    void writeTo(const raster::PixelBounds& pixels, float sampleWeight, Image& image, RenderStats& stats);
+    // Writes the pixels into the frame, and the frame into `image`.
+    void writeTo(Image& image, RenderStats& stats);
 
 private:
     void add(PixelPasses& pixel, std::uint32_t triangle, float share, float depth, const glm::vec3& color);
 
     PassFrame m_frame;
     const std::vector<FlatTriangle>& m_triangles;
-    int m_width = 0;
-    std::vector<PixelPasses> m_pixels;
+    raster::PixelBounds m_bounds;
+    float m_sampleWeight = 1.0f;
+    std::vector<PixelPasses> m_pixels;  ///< the bounds' pixels, row by row
 };
 
 // A pixel's surfaces joined into deep layers. Each `Layer` is its surfaces' summed share of the

@@ -235,22 +235,30 @@ sk::Scene fromArrays(const py::handle& keys, const py::handle& indices, const py
 // Many meshes, each a dict {keys, indices, uvs, normals, material, name}; materials dicts
 // {base_color, texture, opacity, double_sided, specular, shininess, name}; textures arrays.
 sk::Scene fromMeshes(const py::list& meshes, const py::list& materials, const py::list& textures, const py::dict& camera,
-                     const py::object& background) {
+                     const py::object& background, const py::object& frameCameras) {
     std::vector<sk::Mesh> outMeshes;
+    std::vector<std::vector<float>> framePositions;  // with frame_cameras: each mesh's at the 3 frames
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const std::string where = "meshes[" + std::to_string(i) + "]: ";
         if (!py::isinstance<py::dict>(meshes[i])) throw streak::Error(where + "must be a dict {keys, indices, uvs, normals, material, name}");
         const py::dict d = meshes[i].cast<py::dict>();
         for (const auto& [key, value] : d) {
             const std::string k = py::str(key);
-            if (k != "keys" && k != "indices" && k != "uvs" && k != "normals" && k != "material" && k != "name")
-                throw streak::Error(where + "unknown key '" + k + "' (keys, indices, uvs, normals, material, name)");
+            if (k != "keys" && k != "indices" && k != "uvs" && k != "normals" && k != "material" && k != "name" && k != "frame_positions")
+                throw streak::Error(where + "unknown key '" + k + "' (keys, indices, uvs, normals, material, name, frame_positions)");
         }
         if (!d.contains("keys") || !d.contains("indices")) throw streak::Error(where + "needs 'keys' and 'indices'");
         auto get = [&](const char* key) { return d.contains(key) ? py::object(d[key]) : py::object(py::none()); };
         sk::Mesh mesh = meshOf(d["keys"], d["indices"], get("uvs"), get("normals"), where);
         if (d.contains("material")) mesh.material = d["material"].cast<int>();
         if (d.contains("name")) mesh.name = d["name"].cast<std::string>();
+        if (d.contains("frame_positions") != !frameCameras.is_none())
+            throw streak::Error(where + "'frame_positions' and frame_cameras come together (the vector pass's frames)");
+        if (d.contains("frame_positions")) {
+            const FloatArray f = floats(d["frame_positions"], (where + "frame_positions").c_str(), 3, 3, "(3, V, 3): its vertices at the frames F - 1, F, F + 1");
+            if (f.shape(0) != 3) throw streak::Error(where + "frame_positions must be of shape (3, V, 3): its vertices at the frames F - 1, F, F + 1");
+            framePositions.push_back(flat(f));
+        }
         outMeshes.push_back(std::move(mesh));
     }
     std::vector<sk::Material> outMaterials;
@@ -274,7 +282,13 @@ sk::Scene fromMeshes(const py::list& meshes, const py::list& materials, const py
     if (outMaterials.empty()) outMaterials.emplace_back();
     std::vector<sk::Texture> outTextures;
     for (std::size_t i = 0; i < textures.size(); ++i) outTextures.push_back(textureOf(textures[i], "textures[" + std::to_string(i) + "]"));
-    return sk::Scene::fromArrays(outMeshes, outMaterials, cameraOf(camera), outTextures, backgroundOf(background));
+    const sk::Scene scene = sk::Scene::fromArrays(outMeshes, outMaterials, cameraOf(camera), outTextures, backgroundOf(background));
+    if (frameCameras.is_none()) return scene;
+    const py::list cameras = frameCameras.cast<py::list>();
+    if (cameras.size() != 3) throw streak::Error("frame_cameras must be 3 camera dicts: at the frames F - 1, F and F + 1");
+    std::array<sk::Camera, 3> frames;
+    for (std::size_t k = 0; k < 3; ++k) frames[k] = cameraOf(cameras[k].cast<py::dict>());
+    return scene.withFrames(framePositions, frames);
 }
 
 sk::Scene sceneOf(const py::handle& scene) {
@@ -317,10 +331,12 @@ PYBIND11_MODULE(streak, m) {
                     "one mesh: keys (K, V, 3) key poses over the shutter, indices (T, 3), uvs (V, 2), normals (K, V, 3), "
                     "texture (H, W, 4|3) uint8 sRGB or float linear; camera {position, target, up, fov, znear, position_end, target_end, up_end}")
         .def_static("from_meshes", &fromMeshes, py::arg("meshes"), py::arg("materials") = py::list(), py::arg("textures") = py::list(),
-                    py::arg("camera") = py::dict(), py::arg("background") = py::none(),
+                    py::arg("camera") = py::dict(), py::arg("background") = py::none(), py::arg("frame_cameras") = py::none(),
                     "many meshes: meshes [{keys (K, V, 3), indices (T, 3), uvs (V, 2), normals (K, V, 3), material (index), name}], "
                     "materials [{base_color, texture (index), opacity, double_sided, specular, shininess, name}] (none: one white), "
-                    "textures [(H, W, 4|3) uint8 sRGB or float linear]; camera as from_arrays; names are the Cryptomatte names")
+                    "textures [(H, W, 4|3) uint8 sRGB or float linear]; camera as from_arrays; names are the Cryptomatte names; "
+                    "for the vector pass, frame_cameras [3 camera dicts] and each mesh's frame_positions (3, V, 3): the camera and its "
+                    "vertices standing still at the frames F - 1, F and F + 1 around the shutter's")
         .def("with_shutter", [](const sk::Scene& s, const std::string& curve, float rolling) { return s.withShutter({curve, rolling}); },
              py::arg("curve") = "box", py::arg("rolling") = 1.0f)
         .def_property_readonly("num_triangles", &sk::Scene::numTriangles)

@@ -88,6 +88,8 @@ SceneCleanup validateScene(Scene& scene) {
         };
         std::erase_if(mesh.triangles, isInvalid);
     }
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        if (!scene.meshes[m].triangles.empty()) cleanup.keptMeshes.push_back(m);
     std::erase_if(scene.meshes, [](const Mesh& mesh) { return mesh.triangles.empty(); });
     return cleanup;
 }

@@ -56,6 +56,7 @@ struct Scene {
 struct SceneCleanup {
     std::size_t numNonFinite = 0;
     std::size_t numDegenerate = 0;
+    std::vector<std::size_t> keptMeshes;  ///< each kept mesh's index among the meshes given, in order
     std::size_t numSkipped() const { return numNonFinite + numDegenerate; }
 };
 

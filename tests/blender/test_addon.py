@@ -266,6 +266,28 @@ class Addon(unittest.TestCase):
             print(f"vector.{channel} at edges: median difference {np.median(np.abs(d)):.4f} px, RMS {np.sqrt((d ** 2).mean()):.4f} px")
             self.assertLess(float(np.median(np.abs(d))), 0.02)
             self.assertLess(float(np.sqrt((d ** 2).mean())), 0.15)
+        # The add-on's own Vector pass: the frames evaluated in Blender, against Cycles' the same way.
+        report = render_addon(os.path.join(TMP, "vector_addon.exr"), multilayer=True)
+        self.assertEqual(report["status"], "done", report)
+        self.assertFalse(any("Vector" in w for w in report["warnings"]), report["warnings"])
+        c = streak.read_layers(os.path.join(TMP, "vector_addon.exr"))
+        inside = (c["ViewLayer.Combined.A"] > 0.999) & (b["ViewLayer.Combined.A"] > 0.999)
+        self.assertGreater(int(inside.sum()), 1000)
+        for channel in "XYZW":
+            x, y = c[f"ViewLayer.Vector.{channel}"][inside], b[f"ViewLayer.Vector.{channel}"][inside]
+            rms = float(np.sqrt(((x - y) ** 2).mean()))
+            print(f"add-on Vector.{channel}: mean {x.mean():.4f} px, Cycles {y.mean():.4f} px, RMS difference {rms:.4f} px")
+            self.assertLess(rms, 0.05)
+            self.assertLess(abs(float(x.mean() - y.mean())), 0.01)
+        # With motion blur on (Cycles then writes no Vector pass), the mean motion over the
+        # shutter of what shows: near the shut shutter's where the motion is steady.
+        scene.render.use_motion_blur = True
+        report = render_addon(os.path.join(TMP, "vector_addon_blur.exr"), multilayer=True)
+        self.assertEqual(report["status"], "done", report)
+        blurred = streak.read_layers(os.path.join(TMP, "vector_addon_blur.exr"))
+        both = inside & (blurred["ViewLayer.Combined.A"] > 0.999)
+        for channel in "XZ":
+            self.assertLess(abs(float(blurred[f"ViewLayer.Vector.{channel}"][both].mean() - c[f"ViewLayer.Vector.{channel}"][both].mean())), 0.5)
 
     def test_changing_topology_moves_from_the_frame(self):
         # Shutter [5, 5.5] (Start on Frame): a sphere whose faces grow, with a velocity of one unit

@@ -135,10 +135,11 @@ class RenderTest(unittest.TestCase):
             return h ^ (h >> 16)
 
         def id_of(name):
+            """The float ID and the manifest's hex (of that float's bits) of a name."""
             h = murmur3_32(name.encode())
             if (h >> 23) & 255 in (0, 255):  # the specification's conversion: no denormal, inf or NaN
                 h ^= 1 << 23
-            return struct.unpack("<f", struct.pack("<I", h))[0], f"{murmur3_32(name.encode()):08x}"
+            return struct.unpack("<f", struct.pack("<I", h))[0], f"{h:08x}"
 
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "passes.exr")

@@ -33,11 +33,14 @@ public:
         exposure::InstantFrame slice;
         // The passes, when asked for: what each sample shows at each instant (SampledPasses).
         std::optional<exposure::SampledPasses> passes;
-        if (settings.passes.any()) passes.emplace(scene, geometry.triangles(), settings.passes, settings.width, settings.height);
+        const exposure::InstantSchedule schedule(scene.shutter, m_samples, settings.height);
+        if (settings.passes.any())
+            passes.emplace(scene, geometry.triangles(), settings.passes, settings.width, settings.height,
+                           settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
+                           (schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f) / float(pattern.count()));
         const exposure::InstantDraw draw{settings.shading, std::numeric_limits<std::uint32_t>::max(), passes.has_value()};
         double numFragments = 0.0;
 
-        const exposure::InstantSchedule schedule(scene.shutter, m_samples, settings.height);
         const int numInstants = schedule.numInstants();
         for (int s = 0; s < numInstants; ++s) {
             const std::pair<int, int> rows = schedule.rows(s);
@@ -81,9 +84,7 @@ public:
         const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
         for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm, coverage[i] *= norm;
         image.setAlpha(std::move(coverage));
-        if (passes)
-            passes->writeTo(settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
-                            norm / float(pattern.count()), image, context.stats);
+        if (passes) passes->writeTo(image, context.stats);
         context.stats.setCounter("time_samples", m_samples);
         context.stats.setCounter("instants", numInstants);
         context.stats.setCounter("fragments", numFragments);

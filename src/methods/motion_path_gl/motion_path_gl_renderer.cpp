@@ -131,7 +131,8 @@ public:
         const GLsizei numVertices = GLsizei(buffers->numTriangles() * 3);
 
         // Pass 1, again with a larger buffer while it overflows (see the header).
-        const std::size_t capNodes = std::max<std::size_t>(1, std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20) / kNodeBytes);
+        // The lists get what the passes' records leave of the GPU memory budget.
+        const std::size_t capNodes = std::max<std::size_t>(1, (std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20) - shownBytes) / kNodeBytes);
         std::size_t capacity = std::min(capNodes, std::max<std::size_t>(1024, grid.numSamples() * kInitialNodesPerSample));
         std::uint32_t sampleBudget = std::uint32_t(m_options.maxFragments);
         std::optional<gpu::FragmentLists> lists;

@@ -67,7 +67,10 @@ public:
         std::atomic<std::int64_t> tests{0};
         // The passes, when asked for: what each sample shows at each of its times (SampledPasses).
         std::optional<exposure::SampledPasses> passes;
-        if (settings.passes.any()) passes.emplace(scene, frame.geometry.triangles(), settings.passes, settings.width, settings.height);
+        if (settings.passes.any())
+            passes.emplace(scene, frame.geometry.triangles(), settings.passes, settings.width, settings.height,
+                           settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
+                           1.0f / float(m_samples * frame.pattern.count()));
 
         for (int j = 0; j < m_samples; ++j) {
             // Stratum j's times in every row: its share of the exposure, from the top row's
@@ -89,9 +92,7 @@ public:
         const float norm = 1.0f / float(m_samples);
         for (glm::vec3& p : sum.pixels()) p *= norm;
         for (float& a : sum.alpha()) a *= norm;
-        if (passes)
-            passes->writeTo(settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
-                            norm / float(frame.pattern.count()), sum, context.stats);
+        if (passes) passes->writeTo(sum, context.stats);
         context.stats.setCounter("time_samples_per_position", m_samples);
         context.stats.setCounter("samples_per_pixel", double(m_samples) * frame.pattern.count());
         context.stats.setCounter("triangle_tests", double(tests.load()));

@@ -38,9 +38,10 @@ layout(std430, binding = 9) buffer ResolveCounterBuffer {
 // triangle 0xffffffff is no record): a triangle, its share of the sample, its mean depth over
 // the time it shows and the nearest and farthest, and the colour it adds (its colour times its
 // share). A sample's pieces of one triangle are one record; past MAX_SHOWN (a sample swept by
-// many small triangles of one mesh) a triangle joins the record of its mesh nearest to it in
-// depth, so each object's share, depth and colour stay whole; only a sample showing more than
-// MAX_SHOWN meshes loses some (counted).
+// many small triangles) a triangle joins the record of its mesh nearest to it in depth, and a
+// triangle of a mesh with no record frees one by joining the two records of one mesh nearest
+// each other in depth. So each object's share, depth and colour stay whole; only a sample
+// showing more than MAX_SHOWN meshes loses some (counted).
 struct ShownRecord {
     uint triangle;
     float share, depth, nearest, farthest;
@@ -88,11 +89,28 @@ void showSurface(uint tri, float share, vec3 depths, vec3 color) {
             gap = g;
         }
     }
-    if (nearest < 0) {
+    if (nearest >= 0) {
+        joinShown(nearest, share, depths, color);
+        return;
+    }
+    // No record of its mesh: free one, joining the two of one mesh nearest each other.
+    int a = -1, b = -1;
+    for (int i = 0; i < numShown; ++i)
+        for (int j = i + 1; j < numShown; ++j) {
+            if (meshOfTriangle(shown[i].triangle) != meshOfTriangle(shown[j].triangle)) continue;
+            float g = max(0.0, max(shown[i].nearest - shown[j].farthest, shown[j].nearest - shown[i].farthest));
+            if (a < 0 || g < gap) {
+                a = i;
+                b = j;
+                gap = g;
+            }
+        }
+    if (a < 0) {
         isShownOverflowing = true;
         return;
     }
-    joinShown(nearest, share, depths, color);
+    joinShown(a, shown[b].share, vec3(shown[b].depth, shown[b].nearest, shown[b].farthest), vec3(shown[b].r, shown[b].g, shown[b].b));
+    shown[b] = ShownRecord(tri, share, depths.x, depths.y, depths.z, color.r, color.g, color.b);
 }
 
 // An interval's depths over [t0, t1]: at the middle (linear), the nearer end and the farther.
@@ -121,7 +139,7 @@ float measure(float t0, float t1) { return g_window.isIdentity ? t1 - t0 : expos
 void addPiece(int i, uint tri, float t0, float t1, float weight, bool isWhole) {
     if (numPieces == kMaxPieces) return;
     pieceTriangles[numPieces] = tri;
-    pieceDepths[numPieces] = depthsOver(intervals[i], t0, t1);
+    pieceDepths[numPieces] = u_writeSurfaces != 0 ? depthsOver(intervals[i], t0, t1) : vec3(0.0);
     pieces[numPieces++] = vec4(t0, t1, weight, isWhole ? 1.0 : 0.0);
 }
 
