@@ -85,9 +85,10 @@ def cpu_methods(streak):
 
 def method_spec(spec):
     """A --methods entry: NAME or NAME:key=value[;key=value] (method options, e.g.
-    motion-path:shading=sample), as (method, its --option flags, a file-name stem)."""
+    motion-path:shading=sample; an entry starting with -- is a render flag, e.g.
+    analytic:--adaptive=0.02), as (method, its flags, a file-name stem)."""
     method, _, options = spec.partition(":")
-    flags = [f"--option={o}" for o in options.split(";") if o]
+    flags = [o if o.startswith("--") else f"--option={o}" for o in options.split(";") if o]
     return method, flags, re.sub(r"[^A-Za-z0-9.-]", "_", spec)
 
 
@@ -177,6 +178,13 @@ def with_aa(flags, aa):
     return out
 
 
+def rung_flags(flags, aa, options):
+    """The render flags of one rung of the --aa ladder: at --aa 1 adaptive sampling has nothing to
+    refine (the render is the plain one), and is left out."""
+    kept = [o for o in options if not (aa == 1 and o.startswith("--adaptive"))]
+    return scene_flags(flags) + with_aa(STREAK_FLAGS, aa) + kept
+
+
 def time_to_quality(args):
     """Each method's and Cycles' time to each foreground PSNR of args.target_fg against the reference."""
     chosen, methods, ladder_spp = selection(args)
@@ -204,8 +212,7 @@ def time_to_quality(args):
             image = os.path.join(out, f"{stem}-target.exr")
             rungs = []  # (aa, fg, seconds of one render), climbed until every target is reached
             for aa in aa_ladder:
-                args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, aa) + options
-                ms, _ = streak.render(scene, method, image, size=size, args=args_aa, repeats=1)
+                ms, _ = streak.render(scene, method, image, size=size, args=rung_flags(flags, aa, options), repeats=1)
                 _, fg, _ = compare(args.streak, image, reference)
                 rungs.append((aa, fg, ms / 1000))
                 if fg >= max(targets):
@@ -220,8 +227,7 @@ def time_to_quality(args):
                     continue
                 seconds = found[2]
                 if args.repeats > 1:
-                    args_aa = scene_flags(flags) + with_aa(STREAK_FLAGS, found[0]) + options
-                    ms, _ = streak.render(scene, method, image, size=size, args=args_aa)
+                    ms, _ = streak.render(scene, method, image, size=size, args=rung_flags(flags, found[0], options))
                     seconds = min(seconds, ms / 1000)
                 ratio = f"{cycles[2] / seconds:.2f}" if cycles else "—"
                 print(f"| {name} | {target:g} dB | {cycles_text} | {spec} | {found[0]} | {db(found[1])} | {seconds:.2f} s | {ratio} |",

@@ -169,6 +169,7 @@ struct RenderArgs {
     std::optional<int> gpuMemory;
     std::vector<std::string> options;
     int aa = 1;
+    float adaptive = 0.0f;
     std::optional<std::string> region;  ///< --region x0,y0,x1,y1
     bool sampleGrid = false;
     bool transparent = false;
@@ -368,6 +369,7 @@ int runRender(const RenderArgs& args) {
     settings.width = args.width;
     settings.height = args.height;
     settings.aa = args.aa;
+    settings.adaptive = args.adaptive;
     settings.sampleGrid = args.sampleGrid;
     settings.transparent = args.transparent;
     for (std::size_t begin = 0; begin < args.passes.size();) {
@@ -650,6 +652,11 @@ int run(int argc, char** argv) {
                        "GL methods: MB the per-sample lists may grow to before the per-sample budget applies (1024)");
     render->add_option("--option", renderArgs.options, "a method option KEY=VALUE (repeatable; see the method's options)");
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples (n-rooks: each its own row and column), box filter")->capture_default_str();
+    render->add_option("--adaptive", renderArgs.adaptive,
+                       "adaptive anti-aliasing, a threshold T in (0, 1] (0: off; motion-path, analytic, higher-order): one sample per pixel first, "
+                       "then --aa N x N samples where a pixel and a neighbour differ by more than T in sRGB colour or coverage "
+                       "(still edges, silhouettes; a motion-blurred ramp mostly keeps one sample). 0.02 refines what aliasing shows")
+        ->capture_default_str();
     render->add_option("--region", renderArgs.region,
                        "render only the pixels [x0, x1) x [y0, y1) of the image, x0,y0,x1,y1 (Blender's border render): to .exr the "
                        "region keeps its place in the frame (data window), and 'streak stitch' joins regions into the whole frame, bit for bit");

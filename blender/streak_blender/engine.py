@@ -6,6 +6,7 @@ import bpy
 import numpy as np
 
 from . import export, module
+from .properties import EXACT_METHODS
 
 # What the last render did (keys, triangles, warnings, streak's stats), for scripts and tests.
 last_render = {}
@@ -95,7 +96,10 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         def progress(fraction):
             self.update_progress(fraction)
 
-        out = streak.render(sc, method=settings.method, width=width, height=height, aa=settings.aa, unlit=settings.shading == "UNLIT",
+        # Adaptive anti-aliasing is the exact methods', and refines to aa >= 2.
+        adaptive = settings.adaptive if settings.method in EXACT_METHODS and settings.aa >= 2 else 0.0
+        out = streak.render(sc, method=settings.method, width=width, height=height, aa=settings.aa, adaptive=adaptive,
+                            unlit=settings.shading == "UNLIT",
                             options=options, threads=settings.threads, region=region, transparent=True, passes=passes,
                             cryptomatte_ranks=2 * _crypto_layers(view_layer), stats=True, progress=progress, cancel=self.should_stop)
         result_image, stats = out

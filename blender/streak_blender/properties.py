@@ -12,11 +12,18 @@ METHODS = [
     ("embree", "Embree", "Peer: ray tracing with Embree's motion blur (Samples rays per pixel sample)"),
 ]
 
+# The methods that find exact visible spans (and refine adaptively).
+EXACT_METHODS = {"motion-path", "analytic", "higher-order"}
+
 
 class StreakRenderSettings(bpy.types.PropertyGroup):
     method: bpy.props.EnumProperty(name="Method", items=METHODS, default="motion-path")
     aa: bpy.props.IntProperty(name="Spatial Samples", description="N x N sub-pixel samples per pixel (box filter)",
                               default=4, min=1, max=16)
+    adaptive: bpy.props.FloatProperty(name="Adaptive Threshold", description="Exact methods: one sample per pixel first, then the "
+                                      "Spatial Samples where a pixel and a neighbour differ by more than this in display colour or coverage, "
+                                      "or where a thin part no pixel centre saw lies (0: every pixel takes them all; 0.02 refines what "
+                                      "aliasing shows)", default=0.0, min=0.0, max=1.0, precision=3)
     keys: bpy.props.IntProperty(name="Motion Keys", description="Poses evaluated over the shutter: vertices move on straight lines between "
                                 "them (0: as many as Key Tolerance needs, up to 33)", default=0, min=0, max=65)
     key_tolerance: bpy.props.FloatProperty(name="Key Tolerance", description="With Motion Keys 0: keys are doubled until a vertex half-way "

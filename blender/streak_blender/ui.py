@@ -3,6 +3,8 @@ and Film settings (the Cycles names streak honours), drawn while streak is the e
 
 import bpy
 
+from .properties import EXACT_METHODS
+
 
 class StreakPanel:
     bl_space_type = "PROPERTIES"
@@ -24,6 +26,8 @@ class RENDER_PT_streak(StreakPanel, bpy.types.Panel):
         settings = context.scene.streak
         layout.prop(settings, "method")
         layout.prop(settings, "aa")
+        if settings.method in EXACT_METHODS:
+            layout.prop(settings, "adaptive")
         if settings.method in {"accumulation", "stochastic", "embree"}:
             layout.prop(settings, "samples")
         layout.prop(settings, "keys")

@@ -52,6 +52,13 @@ struct RenderSettings {
     // memory the process holds.)
     std::optional<Region> region;
     int aa = 1;
+    // Adaptive antialiasing, 0 off (motion-path, analytic, higher-order): every pixel first takes
+    // one sample at its centre, exact over the shutter; then the pixels where it or a neighbour
+    // differs from the other by more than this, in sRGB-encoded colour (0..1) or coverage, are
+    // rendered again from aa x aa samples. A blurred edge ramps gently and mostly keeps one
+    // sample; still edges and silhouettes across the motion are refined. 0.02 refines what
+    // aliasing would show; lower refines more.
+    float adaptive = 0.0f;
     // A transparent background (Blender's Film > Transparent): the image gets alpha, each pixel's
     // exact coverage over its samples and the shutter (a translucent surface covers by its
     // opacity), and its colour is what shows over a background of alpha 0, premultiplied.

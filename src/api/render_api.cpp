@@ -82,12 +82,16 @@ void addShadedPass(streak::Renderer& method, const streak::RenderSettings& setti
     streak::RenderSettings shaded = settings;
     shaded.shading = mode;
     shaded.passes = PassRequest();
+    // Signed values have no display colour to judge contrast by: adaptive sampling would refine
+    // their edges by chance, so normals and vectors take every sample (the albedo refines by its
+    // own contrast).
+    const bool isSigned = mode == ShadingMode::Normal || isVectorPass(mode);
+    if (isSigned) shaded.adaptiveThreshold = 0.0f;
     RenderStats passStats;
     RenderContext context{passStats, progress};
     PhaseTimer timer(stats, std::string(layer) + " render");
     streak::Image pass = method.render(scene, shaded, context);
     if (!pass.hasAlpha()) throw RenderFailure("method " + methodName + " gave no coverage for the " + layer + " pass");
-    const bool isSigned = mode == ShadingMode::Normal || isVectorPass(mode);
     if (!isSigned) pass = withTransparentBackground(std::move(pass), scene.background);
     int c = 0;
     for (const PassChannel& channel : channels) {
@@ -149,6 +153,10 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
         throw Error("render: width and height must be in [1, " + std::to_string(kMaxImageSize) + "], got " + std::to_string(settings.width) +
                     "x" + std::to_string(settings.height));
     if (settings.aa < 1 || settings.aa > 16) throw Error("render: aa must be in [1, 16], got " + std::to_string(settings.aa));
+    if (!(settings.adaptive >= 0.0f && settings.adaptive <= 1.0f))
+        throw Error("render: adaptive must be a threshold in [0, 1] (0: off), got " + std::to_string(settings.adaptive));
+    if (settings.adaptive > 0.0f && settings.aa < 2)
+        throw Error("render: adaptive refines pixels to aa x aa samples, so it needs aa 2 or more, got aa " + std::to_string(settings.aa));
     if (settings.threads < 0) throw Error("render: threads must be 0 (all cores) or more, got " + std::to_string(settings.threads));
     if (settings.memoryBudgetMB < 1) throw Error("render: memoryBudgetMB must be 1 or more, got " + std::to_string(settings.memoryBudgetMB));
     if (const std::optional<Region>& r = settings.region;
@@ -163,6 +171,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     streak::RenderSettings& s = m_impl->layerSettings;
     s.width = settings.width, s.height = settings.height, s.aa = settings.aa;
     s.isGridPattern = settings.sampleGrid;
+    s.adaptiveThreshold = settings.adaptive;
     s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
     s.seed = settings.seed;
     s.memoryBudgetMB = std::uint64_t(settings.memoryBudgetMB);
@@ -188,6 +197,8 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     s.passes.deep = settings.deep;
     s.passes.deepSamples = settings.deepSamples;
     s.passes.deepBackground = !settings.transparent;
+    if (settings.adaptive > 0.0f && !m_impl->method->refinesAdaptively())
+        throw Error("method " + settings.method + " takes every sample of every pixel: adaptive antialiasing is motion-path's, analytic's and higher-order's");
     if (s.passes.any() && !m_impl->method->writesPasses())
         throw Error("method " + settings.method + " does not write the depth, Cryptomatte and deep passes (" +
                     std::string(s.passes.depth ? "depth" : s.passes.objectId ? "object_id" : s.passes.materialId ? "material_id" : "deep") +

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "exposure/adaptive_sampling.h"
 #include "exposure/exposure_interval.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_passes.h"
@@ -17,7 +18,9 @@
 #include <glm/vec3.hpp>
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <span>
@@ -54,6 +57,58 @@ Image runTilePass(raster::TileGrid& grid, std::span<const raster::PixelBounds> b
     }
     if (progress) progress->update(1.0);
     return image;
+}
+
+// Progress over one stretch [from, to] of a render's whole (a pass of several).
+class ProgressStretch final : public ProgressReporter {
+public:
+    ProgressStretch(ProgressReporter* whole, double from, double to) : m_whole(whole), m_from(from), m_to(to) {}
+    ProgressReporter* get() { return m_whole ? this : nullptr; }
+    void update(double fraction) override { m_whole->update(m_from + (m_to - m_from) * fraction); }
+
+private:
+    ProgressReporter* m_whole;
+    double m_from, m_to;
+};
+
+// An exact method's tile passes, one or two (AdaptiveSampling). firstPass(pattern, grid region,
+// progress, geometry) renders the whole image with the sample pattern it is handed, in a grid of
+// that region, and returns it; it tells `geometry` (when not null) what its samples showed and
+// missed. Without a threshold (or with one sample a pixel) that is all, with fullPattern. With
+// one, the first pass takes one sample per pixel, in the region grown by a pixel, and the pixels
+// it marks go to refine(refinement, image, progress), which renders them again with
+// fullPattern into the first pass's image. `refinement` keeps the marks (for the stats). The
+// marking is timed as "mark"; the passes time their own tiles.
+template <class FirstPass, class Refine>
+Image renderAdaptively(const raster::SamplePattern& fullPattern, float threshold, const std::optional<raster::PixelBounds>& region, int width,
+                       int height, RenderStats& stats, ProgressReporter* progress, std::optional<AdaptiveSampling>& refinement,
+                       FirstPass&& firstPass, Refine&& refine) {
+    if (!(threshold > 0.0f) || fullPattern.count() == 1) return firstPass(fullPattern, region, progress, nullptr);
+    // The first pass is about 1/N^2 of the work of a refined pixel: a fifth of the bar.
+    ProgressStretch first(progress, 0.0, 0.2), second(progress, 0.2, 1.0);
+    std::optional<Image> image;
+    {
+        // (What the first pass saw is freed before the second.)
+        FirstPassGeometry geometry(width, height);
+        image = firstPass(raster::samplePatternFor(1, false), AdaptiveSampling::firstPassRegion(region, width, height), first.get(), &geometry);
+        PhaseTimer timer(stats, "mark");
+        refinement.emplace(*image, threshold, region, &geometry);
+    }
+    refine(*refinement, *image, second.get());
+    if (progress) progress->update(1.0);
+    return std::move(*image);
+}
+
+// The refining pass of AdaptiveSampling: every tile of the grid with marked pixels, in parallel,
+// by renderTile(tile, scratch) (which renders its marked runs: renderExactTileRuns).
+template <class Scratch, class RenderTile>
+void runRefinementPass(const raster::TileGrid& grid, const AdaptiveSampling& refinement, ProgressReporter* progress,
+                       tbb::enumerable_thread_specific<Scratch>& scratch, RenderTile&& renderTile) {
+    PartsProgress tiles(progress, std::size_t(grid.numActiveTiles()));
+    grid.forEachTile([&](int tile) {
+        if (refinement.anyIn(grid.tileBounds(tile))) renderTile(tile, scratch.local());
+        tiles.partDone();
+    });
 }
 
 // Sets each pixel of rect in `image` (which has alpha) to the mean of its samples, laid out
@@ -151,23 +206,88 @@ struct ExactTileScratch {
     std::vector<glm::vec3> color;
     std::vector<float> coverage;
     std::vector<glm::dvec2> sampleNdc;  ///< the tile's samples in NDC, indexed as TileRecord::sample
+    std::vector<std::uint32_t> seenSources;  ///< a first pass's items with records in the tile (noteUnseenItems)
     PixelPasses passes;
     Cache cache;
     Counters counters;
 };
 
-// An exact method's tile: its cache emptied, then its pixels by renderRect(items, rect, isPixel)
-// (the tile's items, and the tile or a piece of it), in pieces while a piece's records would pass
-// the share (renderWithinShare). A piece given up was spent finding intervals, and is timed so.
+// The pixels `bounds` of a tile whose items are `items`, by renderRect(items, rect, isPixel), in
+// pieces while a piece's records would pass the share (renderWithinShare). A piece given up was
+// spent finding intervals, and is timed so.
 template <class Cache, class Counters, class RenderRect>
-void renderExactTile(const raster::TileGrid& grid, int tile, ExactTileScratch<Cache, Counters>& scratch, RenderRect&& renderRect) {
-    scratch.cache.clear();
-    renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
+void renderExactRect(const raster::PixelBounds& bounds, std::span<const std::uint32_t> items, ExactTileScratch<Cache, Counters>& scratch,
+                     RenderRect&& renderRect) {
+    renderWithinShare(bounds, scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
         const auto start = std::chrono::steady_clock::now();
-        const bool fits = renderRect(grid.items(tile), rect, isPixel);
+        const bool fits = renderRect(items, rect, isPixel);
         if (!fits) scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return fits;
     });
+}
+
+// An exact method's tile: its cache emptied, then its pixels by renderRect(items, rect, isPixel)
+// (the tile's items, and the tile or a piece of it: renderExactRect).
+template <class Cache, class Counters, class RenderRect>
+void renderExactTile(const raster::TileGrid& grid, int tile, ExactTileScratch<Cache, Counters>& scratch, RenderRect&& renderRect) {
+    scratch.cache.clear();
+    renderExactRect(grid.tileBounds(tile), grid.items(tile), scratch, renderRect);
+}
+
+// The refining pass's tile (AdaptiveSampling): its cache emptied, then each run of its marked
+// pixels as renderExactTile renders its whole rectangle.
+template <class Cache, class Counters, class RenderRect>
+void renderExactTileRuns(const raster::TileGrid& grid, int tile, const AdaptiveSampling& refinement, ExactTileScratch<Cache, Counters>& scratch,
+                         RenderRect&& renderRect) {
+    scratch.cache.clear();
+    refinement.forEachRun(grid.tileBounds(tile), [&](const raster::PixelBounds& run) { renderExactRect(run, grid.items(tile), scratch, renderRect); });
+}
+
+// The tile passes of an exact method on ExactTileScratch, one or two (renderAdaptively over a
+// grid of tileSize tiles): `frame` is the method's, with its viewport, its items' pixel `bounds`,
+// its full sample `pattern` (which each pass sets to its own) and `firstPass` (what a first pass
+// tells FirstPassGeometry, else null); renderRect(items, rect, isPixel, scratch, image) renders
+// a piece of a tile (renderExactTile, renderExactTileRuns), and frame.unseenSurfaceOf(item) is
+// an item's surface for noteUnseenItems (unseenSurface). `refinement` keeps the marks; the
+// frame's pattern is its full one again after.
+template <class Frame, class Scratch, class RenderRect>
+Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background, float adaptiveThreshold,
+                         const std::optional<raster::PixelBounds>& region, RenderStats& stats, ProgressReporter* progress, TileBudget& budget,
+                         tbb::enumerable_thread_specific<Scratch>& scratch, std::optional<AdaptiveSampling>& refinement, RenderRect&& renderRect) {
+    const raster::Viewport viewport = frame.viewport;
+    const raster::SamplePattern fullPattern = frame.pattern;
+    const std::span<const raster::PixelBounds> bounds(frame.bounds);
+    auto usePass = [&](const raster::SamplePattern& pattern, FirstPassGeometry* geometry) { frame.pattern = pattern, frame.firstPass = geometry; };
+    std::optional<raster::TileGrid> grid;
+    return renderAdaptively(
+        fullPattern, adaptiveThreshold, region, viewport.width, viewport.height, stats, progress, refinement,
+        [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& passRegion, ProgressReporter* passProgress,
+            FirstPassGeometry* geometry) {
+            usePass(pattern, geometry);
+            grid.emplace(viewport, tileSize, passRegion);
+            return runTilePass(*grid, bounds, background, viewport.width, viewport.height, stats, passProgress, budget, scratch,
+                               [&](int tile, Scratch& local, Image& image) {
+                local.seenSources.clear();
+                renderExactTile(*grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
+                    const bool fits = renderRect(items, rect, isPixel, local, image);
+                    if (geometry)
+                        for (const TileRecord& r : local.records) local.seenSources.push_back(r.interval.source);
+                    return fits;
+                });
+                if (geometry)
+                    noteUnseenItems(grid->items(tile), bounds, grid->tileBounds(tile), local.seenSources, *geometry,
+                                    [&](std::uint32_t item) { return frame.unseenSurfaceOf(item); });
+            });
+        },
+        [&](const AdaptiveSampling& marks, Image& image, ProgressReporter* passProgress) {
+            usePass(fullPattern, nullptr);
+            PhaseTimer timer(stats, "tiles");
+            runRefinementPass(*grid, marks, passProgress, scratch, [&](int tile, Scratch& local) {
+                renderExactTileRuns(*grid, tile, marks, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
+                    return renderRect(items, rect, isPixel, local, image);
+                });
+            });
+        });
 }
 
 // What a tile's interval record costs the thread's share: itself, and its copy grouped by sample.
@@ -211,19 +331,46 @@ inline void tileSampleNdc(const raster::PixelBounds& rect, const raster::SampleP
 // measuring the linear depths' misordering (--option check-depth-order).
 using ExactDepthOfSource = std::function<double(std::uint32_t source, float t, const glm::dvec2& ndc)>;
 
+// Tells a first pass of adaptive sampling which of a tile's items (triangle segments, `bounds`
+// their pixels) covered none of its samples: those whose bounds meet the tile's pixels `rect`
+// and that are not in `seen` (the sources of all the tile's records or intervals, over every
+// piece the memory budget cut it into; sorted and made unique here), each with its surface and
+// nearest view depth, surfaceOf(item) -> {FirstPassGeometry::keyBit, depth (0: unknown)}, over
+// those pixels.
+template <class SurfaceOf>
+void noteUnseenItems(std::span<const std::uint32_t> items, std::span<const raster::PixelBounds> bounds, const raster::PixelBounds& rect,
+                     std::vector<std::uint32_t>& seen, FirstPassGeometry& firstPass, SurfaceOf&& surfaceOf) {
+    std::sort(seen.begin(), seen.end());
+    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+    for (const std::uint32_t item : items) {
+        const raster::PixelBounds& box = bounds[item];
+        const raster::PixelBounds pixels{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1), std::min(box.y1, rect.y1)};
+        if (pixels.empty() || std::binary_search(seen.begin(), seen.end(), item)) continue;
+        const auto [key, nearest] = surfaceOf(item);
+        firstPass.addUnseen({key, pixels, nearest});
+    }
+}
+
+// The key and nearest view depth of a segment for noteUnseenItems, from its triangle and its
+// nearness (1 / its nearest view depth, 0 where unknown).
+inline std::pair<std::uint64_t, float> unseenSurface(const FlatTriangle& triangle, float nearness) {
+    return {FirstPassGeometry::keyBit(triangle.mesh, triangle.material), nearness > 0.0f ? 1.0f / nearness : 0.0f};
+}
+
 // The shared second half of an exact method's tile, once its intervals are in scratch.records
 // (their search began at intervalStart, and is timed up to their grouping): groups them by
 // sample, resolves every sample exactly (resolveSample, compressing to the budget) and shades
 // what shows (resolveTile: per sample, or per pixel as options.shading says). The method
 // supplies triangleOf(source) and shade(triangle, t0, t1, ShadingSite, pixel row) ->
 // ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`,
-// and their passes, when asked for, to `passes`.
+// and their passes, when asked for, to `passes`; a first pass of adaptive sampling tells
+// `firstPass` the surfaces each pixel showed.
 template <class Cache, class Counters, class TriangleOf, class Shade>
 void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
                       const std::vector<FlatTriangle>& triangles, int width, int height, const ExactResolveOptions& options,
                       std::chrono::steady_clock::time_point intervalStart, ExactTileScratch<Cache, Counters>& scratch,
                       Image& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr,
-                      PassFrame* passes = nullptr) {
+                      PassFrame* passes = nullptr, FirstPassGeometry* firstPass = nullptr) {
     const std::size_t numSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(rect.y1 - rect.y0 + 1) * std::size_t(pattern.count());
     raster::groupBySample(std::span<const TileRecord>(scratch.records), numSamples, scratch.runs, scratch.bySample);
     scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - intervalStart).count();
@@ -241,6 +388,21 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
             scene.background, triangleOf, [&](std::uint32_t triangle) { return materialOf(triangle).isTranslucent(); },
             [&](std::uint32_t triangle, float t0, float t1) { return shade(triangle, t0, t1, sampleSite(ndc, pattern.samplesPerAxis()), row); },
             scratch.resolve, scratch.counters.resolve);
+        if (firstPass) {
+            // One sample per pixel, at its centre.
+            const int px = std::clamp(int(std::floor((ndc.x + 1.0) * 0.5 * width)), 0, width - 1);
+            for (const VisiblePiece& piece : scratch.resolve.pieces) {
+                const FlatTriangle& t = triangles[piece.triangle];
+                firstPass->show(px, row, t.mesh, t.material);
+            }
+            bool isOpaque = scratch.resolve.coverage >= 1.0f - 1e-5f;
+            for (const ExposureInterval& interval : list) isOpaque = isOpaque && !materialOf(triangleOf(interval.source)).isTranslucent();
+            if (isOpaque) {
+                float farthest = 0.0f;
+                forEachShownSurface(list, scratch.resolve, [&](std::uint32_t, float, float, float, float far) { farthest = std::max(farthest, far); });
+                firstPass->setReach(px, row, farthest);
+            }
+        }
         if (passes) {
             forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth, float nearest, float farthest) {
                 const std::uint32_t triangle = triangleOf(source);

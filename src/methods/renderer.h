@@ -24,6 +24,10 @@ struct RenderSettings {
     int height = 768;                          ///< pixels
     int aa = 1;                                ///< N: N x N sub-pixel samples, box filter
     bool isGridPattern = false;                ///< the N x N grid of cell centres instead of n-rooks (raster::SamplePattern)
+    // Adaptive antialiasing (exposure::AdaptiveSampling), 0 off: one sample per pixel first, then
+    // the N x N pattern where a pixel's neighbourhood differs by more than this in sRGB colour
+    // or coverage. Only a method whose refinesAdaptively() is true is given one.
+    float adaptiveThreshold = 0.0f;
     ShadingMode shading = ShadingMode::Phong;
     std::uint64_t seed = 0;                    ///< for methods that sample randomly
     // Memory: the process should hold at most memoryBudgetMB. The exact methods' tile lists take
@@ -68,6 +72,9 @@ public:
 
     // Whether the method writes the passes of RenderSettings::passes (depth, Cryptomatte).
     virtual bool writesPasses() const { return false; }
+
+    // Whether the method honours RenderSettings::adaptiveThreshold.
+    virtual bool refinesAdaptively() const { return false; }
 
     // The trail the method needs loaded instead of the shutter (blur-shell); none by default.
     virtual std::optional<AnimationTrail> animationTrail() const { return std::nullopt; }

@@ -125,6 +125,17 @@ class Addon(unittest.TestCase):
         self.assertGreaterEqual(whole, 45.0)
         self.assertGreaterEqual(fg, 45.0)
 
+    def test_adaptive_threshold_is_the_command_lines_adaptive_flag(self):
+        render_addon(os.path.join(TMP, "adaptive.exr"), adaptive=0.02)
+        render_gltf(os.path.join(TMP, "adaptive_gltf.exr"), "--adaptive", "0.02")
+        whole, fg = psnr(streak.read_image(os.path.join(TMP, "adaptive.exr")), streak.read_image(os.path.join(TMP, "adaptive_gltf.exr")))
+        print(f"adaptive add-on against the glTF export's --adaptive: {whole:.1f} dB, foreground {fg:.1f} dB")
+        self.assertGreaterEqual(whole, 45.0)
+        self.assertGreaterEqual(fg, 45.0)
+        # A sampled method has nothing to refine adaptively: the setting is left out, not an error.
+        report = render_addon(os.path.join(TMP, "adaptive_accumulation.exr"), adaptive=0.02, method="accumulation", samples=4)
+        self.assertEqual(report["status"], "done", report)
+
     def test_a_turning_camera_streak_follows_matches_the_gltf_export(self):
         # Looking down and panning: its up vector turns with it, and streak's camera, told the
         # pose at each end, turns by slerp as Blender's single-axis Euler curve does.

@@ -196,6 +196,32 @@ std::vector<std::string> renderAndStitchRegions(const test::TempDir& dir, const 
     return parts;
 }
 
+// Adaptive antialiasing marks a pixel by its neighbours in the first pass, across tiles: a
+// region's first pass reaches a pixel past the region, so its marks, and pixels, are the whole
+// frame's; and the thread count changes no bit. Refused where it cannot apply.
+TEST(Cli, AdaptiveRegionsStitchIntoTheWholeFrameBitForBit) {
+    test::TempDir dir;
+    for (const char* method : {"motion-path", "analytic", "higher-order"}) {
+        SCOPED_TRACE(method);
+        const std::string base = std::string("render builtin:cubes?n=40 -m ") + method +
+                                 " --width 128 --height 96 --aa 4 --adaptive 0.02 --rolling-shutter 0.5 --passes depth,object_id ";
+        ASSERT_EQ(runStreak(dir, base + "--threads 2 -o " + dir.file("whole.exr") + " --stats " + dir.file("s.json")).exitCode, 0);
+        const std::string stats = readFile(dir.file("s.json"));
+        EXPECT_NE(stats.find("adaptive_pixels_refined"), std::string::npos);
+        ASSERT_EQ(runStreak(dir, base + "--threads 1 -o " + dir.file("one.exr")).exitCode, 0);
+        EXPECT_EQ(readFile(dir.file("one.exr")), readFile(dir.file("whole.exr")));
+        // Cut at tile borders (16 px): the first pass reaches into the next tile for the neighbours.
+        renderAndStitchRegions(dir, base, {"0,0,48,96", "48,0,128,32", "48,32,128,96"});
+        EXPECT_EQ(readFile(dir.file("stitched.exr")), readFile(dir.file("whole.exr")));
+        // And it is not the plain render at --aa 4 or 1: it refined some pixels and not others.
+        ASSERT_EQ(runStreak(dir, std::string("render builtin:cubes?n=40 -m ") + method +
+                                     " --width 128 --height 96 --aa 4 --rolling-shutter 0.5 --passes depth,object_id -o " + dir.file("full.exr"))
+                      .exitCode,
+                  0);
+        EXPECT_NE(readFile(dir.file("full.exr")), readFile(dir.file("whole.exr")));
+    }
+}
+
 // --transparent: RGBA whose alpha is the render's coverage and whose colour is the render over
 // the scene's background with the background's share (1 - alpha) taken out; EXR premultiplied,
 // PNG straight. Transparent regions stitch with their alpha; an opaque one does not join them.
@@ -791,6 +817,11 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"glTF fit samples without bezier", "render " + glb + "--motion-keys 3 --motion-fit-samples 9 -o " + out},
         {"negative samples", "render builtin:crossing -m stochastic --samples -3 -o " + out},
         {"zero aa", "render " + ok + "--aa 0 -o " + out},
+        {"adaptive at aa 1", "render builtin:crossing -m analytic --width 16 --height 16 --adaptive 0.02 -o " + out},
+        {"negative adaptive", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive -0.1 -o " + out},
+        {"adaptive past 1", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive 1.5 -o " + out},
+        {"adaptive for a sampling method", "render " + ok + "--aa 4 --adaptive 0.02 -o " + out},
+        {"adaptive for a GL twin", "render builtin:crossing -m motion-path-gl --width 16 --height 16 --aa 4 --adaptive 0.02 -o " + out},
         {"non-numeric width", "render builtin:crossing --width abc -o " + out},
         {"bad shading", "render " + ok + "--shading toon -o " + out},
         {"bad background", "render " + ok + "--background 1,2 -o " + out},

@@ -53,6 +53,19 @@ class RenderTest(unittest.TestCase):
         with self.assertRaises(streak.Error):
             streak.render("builtin:spin", width=64, height=48, region=(0, 0, 65, 48))
 
+    def test_adaptive_equals_the_cli_exr_and_is_refused_at_aa_1(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "adaptive.exr")
+            subprocess.run([CLI, "render", "builtin:spin", "-m", "analytic", "--width", "64", "--height", "48", "--aa", "4", "--adaptive", "0.02",
+                            "-o", path], check=True)
+            image, stats = streak.render("builtin:spin", method="analytic", width=64, height=48, aa=4, adaptive=0.02, stats=True)
+            self.assertTrue(np.array_equal(image, streak.read_image(path)))
+            self.assertGreater(stats["counters"]["adaptive_pixels_refined"], 0)
+            full = streak.render("builtin:spin", method="analytic", width=64, height=48, aa=4)
+            self.assertFalse(np.array_equal(image, full))
+        with self.assertRaises(streak.Error):
+            streak.render("builtin:spin", width=64, height=48, adaptive=0.02)
+
     def test_transparent_gives_the_sweeping_quads_coverage_as_alpha(self):
         # Over a grey background, alpha is the closed-form coverage and the colour is the white
         # quad's premultiplied by it: the background is gone. The CLI's EXR and write_image agree.

@@ -73,16 +73,14 @@ public:
             frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
-        raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
-        Image image = exposure::runTilePass(
-            grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
-                exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
-                    return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
-                });
-            });
+        std::optional<exposure::AdaptiveSampling> refinement;
+        Image image = exposure::runExactTilePasses(frame, kTileSize, scene.background, settings.adaptiveThreshold, settings.region, context.stats,
+                                                   context.progress, budget, scratch, refinement,
+                                                   [&](auto items, const raster::PixelBounds& rect, bool isPixel, TileScratch& local, Image& pixels) {
+            return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
+        });
 
         Counters total;
         exposure::TileBudgetCounters budgetTotal;
@@ -96,8 +94,11 @@ public:
             total.resolve.add(c.resolve);
         }
         RenderStats& stats = context.stats;
-        const double numPixels = double(settings.width) * settings.height, numSamples = numPixels * frame.pattern.count();
-        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, numPixels, m_options.resolve.maxIntervals,
+        const double numPixels = double(settings.width) * settings.height;
+        const double numSamples = refinement ? refinement->numSamples(numPixels, frame.pattern) : numPixels * frame.pattern.count();
+        if (refinement) refinement->record(stats, settings.adaptiveThreshold);
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples,
+                                     refinement ? refinement->numPixelRenders(numPixels) : numPixels, m_options.resolve.maxIntervals,
                                      m_options.resolve.shading);
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setInfo("simd", simd::levelName(frame.simd));
@@ -127,6 +128,7 @@ public:
     }
 
     bool writesPasses() const override { return true; }
+    bool refinesAdaptively() const override { return true; }
 
 private:
     struct Frame {
@@ -140,6 +142,12 @@ private:
         std::vector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
         simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
+        exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
+
+        // A segment's surface and nearest depth, for the first pass's unseen segments.
+        std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {
+            return exposure::unseenSurface(segmented->flat().triangles()[segmented->segments()[segment].triangle], segmented->segments()[segment].nearness);
+        }
 
         void computeBounds() { bounds = segmented->screenBounds(viewport); }
 
@@ -314,13 +322,14 @@ private:
             const exposure::TriangleSegment& s = segments[source];
             return raster::MovingTriangle(s.clip0, s.clip1).sample(s.localTime(t), ndc).viewDepth;
         };
+        const auto triangleOfSource = [&](std::uint32_t source) { return segments[source].triangle; };
         exposure::resolveExactTile(
             rect, frame.pattern, scene, triangles, width, height, frame.options.resolve, start, scratch, image,
-            [&](std::uint32_t source) { return segments[source].triangle; },
+            triangleOfSource,
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             },
-            frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr);
+            frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         return true;
     }
 

@@ -82,16 +82,14 @@ public:
                 frame.bounds[i] = u.x1 < 0 ? raster::PixelBounds{} : u;
             }
         }
-        raster::TileGrid grid(viewport, kTileSize, settings.region);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
-        Image image = exposure::runTilePass(
-            grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width, settings.height, context.stats,
-            context.progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
-                exposure::renderExactTile(grid, tile, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
-                    return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
-                });
-            });
+        std::optional<exposure::AdaptiveSampling> refinement;
+        Image image = exposure::runExactTilePasses(frame, kTileSize, scene.background, settings.adaptiveThreshold, settings.region, context.stats,
+                                                   context.progress, budget, scratch, refinement,
+                                                   [&](auto items, const raster::PixelBounds& rect, bool isPixel, TileScratch& local, Image& pixels) {
+            return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
+        });
 
         Counters total;
         exposure::TileBudgetCounters budgetTotal;
@@ -109,8 +107,11 @@ public:
             total.resolve.add(c.resolve);
         }
         RenderStats& stats = context.stats;
-        const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
-        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples, double(settings.width) * settings.height,
+        const double numPixels = double(settings.width) * settings.height;
+        const double numSamples = refinement ? refinement->numSamples(numPixels, frame.pattern) : numPixels * frame.pattern.count();
+        if (refinement) refinement->record(stats, settings.adaptiveThreshold);
+        exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples,
+                                     refinement ? refinement->numPixelRenders(numPixels) : numPixels,
                                      m_options.resolve.maxIntervals, m_options.resolve.shading);
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setCounter("motion_order", frame.geometry->order());
@@ -139,6 +140,8 @@ public:
         stats.setCounter("depth_splits", double(total.depthSplits));
         if (m_options.checkVisibility > 0) {
             PhaseTimer timer(stats, "check_visibility");
+            raster::TileGrid grid(viewport, kTileSize, settings.region);
+            grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
             stats.setCounter("visibility_accuracy", visibilityAccuracy(frame, grid));
             stats.setCounter("visibility_checks", m_options.checkVisibility);
         }
@@ -148,6 +151,7 @@ public:
     }
 
     bool writesPasses() const override { return true; }
+    bool refinesAdaptively() const override { return true; }
 
 private:
     struct Frame {
@@ -162,6 +166,12 @@ private:
         std::vector<raster::PixelBounds> bounds;  ///< per segment: the union of its boxes, for binning
         int numBoxes = 1;
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
+        exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
+
+        // A segment's surface and nearest depth, for the first pass's unseen segments.
+        std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {
+            return exposure::unseenSurface(geometry->flat().triangles()[geometry->segments()[segment].triangle], geometry->segments()[segment].nearness);
+        }
 
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
@@ -305,13 +315,14 @@ private:
                 }
         }
         if (!exposure::keepRecordsWithinShare(scratch, maxRecords, isPixel, numSamples, items.size(), items.size())) return false;
+        const auto triangleOfSource = [&](std::uint32_t source) { return segments[source].triangle; };
         exposure::resolveExactTile(
             rect, frame.pattern, frame.scene, triangles, width, height, frame.options.resolve, start, scratch, image,
-            [&](std::uint32_t source) { return segments[source].triangle; },
+            triangleOfSource,
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             },
-            nullptr, frame.passes ? &*frame.passes : nullptr);
+            nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         return true;
     }
 

@@ -91,6 +91,7 @@ struct TileScratch {
     exposure::PixelShading pixelShading;        ///< one pixel's, shaded together
     std::vector<float> events;
     std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
+    std::vector<std::uint32_t> seenPaths;  ///< an adaptive first pass's paths with intervals in the tile (noteUnseenItems)
     std::vector<glm::vec3> color;
     std::vector<float> coverage;           ///< per sample
     exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
@@ -122,26 +123,54 @@ public:
             PhaseTimer timer(context.stats, "generate");
             frame.generate();
         }
-        raster::TileGrid grid(frame.viewport, kTileSize, settings.region);
-        {
-            PhaseTimer timer(context.stats, "bin");
-            grid.bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
-        }
-        Image image(settings.width, settings.height, scene.background);
-        image.setUncovered();
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
-        budget.measure();
-        {
-            PhaseTimer timer(context.stats, "tiles");
-            const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
-            PartsProgress tiles(context.progress, std::size_t(grid.numActiveTiles()));
-            grid.forEachTile([&](int tile) {
-                renderTile(frame, grid, tile, shareFragments, scratch.local(), image);
-                tiles.partDone();
-            }, /*includeEmpty=*/true);
-        }
-        if (context.progress) context.progress->update(1.0);
+        std::optional<raster::TileGrid> grid;
+        std::optional<exposure::AdaptiveSampling> refinement;
+        const raster::SamplePattern fullPattern = frame.pattern;
+        Image image = exposure::renderAdaptively(
+            fullPattern, settings.adaptiveThreshold, settings.region, settings.width, settings.height, context.stats, context.progress, refinement,
+            [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& region, ProgressReporter* progress,
+                exposure::FirstPassGeometry* firstPass) {
+                frame.pattern = pattern, frame.firstPass = firstPass;
+                grid.emplace(frame.viewport, kTileSize, region);
+                {
+                    PhaseTimer timer(context.stats, "bin");
+                    grid->bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
+                }
+                Image pixels(settings.width, settings.height, scene.background);
+                pixels.setUncovered();
+                budget.measure();
+                PhaseTimer timer(context.stats, "tiles");
+                const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
+                PartsProgress tiles(progress, std::size_t(grid->numActiveTiles()));
+                grid->forEachTile([&](int tile) {
+                    TileScratch& local = scratch.local();
+                    local.movingTriangles.clear();
+                    local.seenPaths.clear();
+                    renderPixels(frame, *grid, tile, grid->tileBounds(tile), shareFragments, local, pixels);
+                    if (firstPass)
+                        exposure::noteUnseenItems(grid->items(tile), std::span<const raster::PixelBounds>(frame.bounds), grid->tileBounds(tile),
+                                                  local.seenPaths, *firstPass, [&](std::uint32_t path) {
+                            const exposure::TriangleSegment& segment = frame.paths[path];
+                            return exposure::unseenSurface(frame.geometry.triangles()[segment.triangle], segment.nearness);
+                        });
+                    tiles.partDone();
+                }, /*includeEmpty=*/true);
+                if (progress) progress->update(1.0);
+                return pixels;
+            },
+            [&](const exposure::AdaptiveSampling& marks, Image& pixels, ProgressReporter* progress) {
+                frame.pattern = fullPattern, frame.firstPass = nullptr;
+                PhaseTimer timer(context.stats, "tiles");
+                const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
+                exposure::runRefinementPass(*grid, marks, progress, scratch, [&](int tile, TileScratch& local) {
+                    local.movingTriangles.clear();
+                    marks.forEachRun(grid->tileBounds(tile), [&](const raster::PixelBounds& run) {
+                        renderPixels(frame, *grid, tile, run, shareFragments, local, pixels);
+                    });
+                });
+            });
 
         Counters total;
         exposure::TileBudgetCounters budgetTotal;
@@ -167,8 +196,10 @@ public:
         context.stats.addTime("resolve", total.resolveSeconds * scale);
         context.stats.addTime("shade", total.shadeSeconds * scale);
 
-        const double numSamples = double(settings.width) * settings.height * frame.pattern.count();
         RenderStats& stats = context.stats;
+        const double numPixels = double(settings.width) * settings.height;
+        const double numSamples = refinement ? refinement->numSamples(numPixels, fullPattern) : numPixels * fullPattern.count();
+        if (refinement) refinement->record(stats, settings.adaptiveThreshold);
         budget.record(stats, budgetTotal, kBytesPerFragment);
         stats.setCounter("segments_per_triangle", frame.segmented.numSegments());
         stats.setCounter("motion_paths", double(frame.paths.size()));
@@ -186,7 +217,7 @@ public:
         stats.setCounter("interval_splits", double(total.splits));
         stats.setCounter("sort_cycles", double(total.cycles));
         stats.setCounter("backface_intervals_culled", double(total.culledIntervals));
-        exposure::recordPixelShadingStats(stats, total.shading, double(settings.width) * settings.height, m_options.shading);
+        exposure::recordPixelShadingStats(stats, total.shading, refinement ? refinement->numPixelRenders(numPixels) : numPixels, m_options.shading);
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
@@ -200,6 +231,7 @@ public:
     }
 
     bool writesPasses() const override { return true; }
+    bool refinesAdaptively() const override { return true; }
 
 private:
     // The scene's motion paths, set up for rasterization: one per triangle and linear segment
@@ -241,6 +273,7 @@ private:
         const Options& options;
         raster::Viewport viewport;
         raster::SamplePattern pattern;
+        exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
         exposure::SegmentedGeometry segmented;
         const FlatGeometry& geometry;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
@@ -337,11 +370,12 @@ private:
                            fragments.begin());
     }
 
-    // A tile, in halves while its fragments would pass shareFragments (exposure::renderWithinShare).
-    void renderTile(const Frame& frame, const raster::TileGrid& grid, int tile, std::size_t shareFragments, TileScratch& scratch,
-                    Image& image) const {
-        scratch.movingTriangles.clear();
-        exposure::renderWithinShare(grid.tileBounds(tile), scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
+    // The pixels `bounds` of a tile (the tile, or a run of its pixels that adaptive sampling
+    // refines), in halves while its fragments would pass shareFragments
+    // (exposure::renderWithinShare). The tile's cache of edge equations is the caller's to empty.
+    void renderPixels(const Frame& frame, const raster::TileGrid& grid, int tile, const raster::PixelBounds& bounds, std::size_t shareFragments,
+                      TileScratch& scratch, Image& image) const {
+        exposure::renderWithinShare(bounds, scratch.budget, [&](const raster::PixelBounds& rect, bool isPixel) {
             return renderRect(frame, grid.items(tile), rect, isPixel, shareFragments, scratch, image);
         });
     }
@@ -385,6 +419,14 @@ private:
                 return false;
             }
             const std::uint32_t index = items[k];
+            // Only the samples within the path's pixel bounds: a conservative face reaches past
+            // them, but a sample beyond gets no interval from it (analytic visits the same box),
+            // and its fragments would only count against the caps. A rectangle the bounds miss
+            // (a cut tile's half, a run of pixels adaptive sampling refines) builds no faces.
+            const raster::PixelBounds& box = frame.bounds[index];
+            const raster::PixelBounds scan{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
+                                           std::min(box.y1, rect.y1)};
+            if (scan.empty()) continue;
             const exposure::TriangleSegment& segment = frame.paths[index];
             motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
             counters.pathFaces += scratch.path.count;
@@ -396,7 +438,7 @@ private:
                 for (int k = 0; k < scratch.setup.count; ++k) {
                     raster::ScreenTriangle& face = scratch.setup.triangles[k].screen;
                     raster::makeConservative(face, frame.viewport);
-                    raster::scanTriangle(face, rect, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
+                    raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
                         const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
                         scratch.fragments.push_back({sample, index, segment.nearness});
                     });
@@ -458,6 +500,8 @@ private:
         }
         now = Clock::now();
         counters.buildSeconds += std::chrono::duration<double>(now - start).count();
+        if (frame.firstPass)
+            for (const Interval& interval : scratch.built) scratch.seenPaths.push_back(interval.source);
 
         // Sort: front to back in depth-time; splits may lengthen a list.
         start = now;
@@ -564,6 +608,23 @@ private:
                 scratch.color[i] = sum;
                 if (frame.passes) addShownSurfaces(frame, scratch, begin, end, i, hasVisibleSpans);
                 if (spans.empty()) continue;
+                if (frame.firstPass) {
+                    const int pixel = int(first / std::size_t(spp)), px = rect.x0 + pixel % tileWidth, py = rect.y0 + pixel / tileWidth;
+                    for (const exposure::VisiblePiece& piece : spans) {
+                        const FlatTriangle& t = frame.geometry.triangles()[piece.triangle];
+                        frame.firstPass->show(px, py, t.mesh, t.material);
+                    }
+                    // How deep it saw: opaque all the shutter, nothing beyond its intervals.
+                    bool isOpaque = scratch.backgroundWeights[i] <= 1e-5f;
+                    float farthest = 0.0f;
+                    for (std::uint32_t k = begin; k < end && isOpaque; ++k) {
+                        if (scratch.weights[k] <= 0.0f) continue;
+                        const Interval& interval = scratch.sorted[k];
+                        isOpaque = !frame.scene.materials[frame.geometry.triangles()[frame.paths[interval.source].triangle].material].isTranslucent();
+                        farthest = std::max(farthest, interval.maxDepth());
+                    }
+                    if (isOpaque) frame.firstPass->setReach(px, py, farthest);
+                }
                 exposure::mergeAbuttingPieces(spans);
                 scratch.pixelShading.add(s, sampleNdc(frame, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
                     return frame.scene.materials[frame.geometry.triangles()[triangle].material].baseColorTexture >= 0;
