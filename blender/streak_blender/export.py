@@ -417,10 +417,20 @@ def build(engine, depsgraph, settings, height):
     report.camera_baked = bake
     fps = scene.render.fps / scene.render.fps_base
     materials = Materials(report)
+    def baked(cams, points):
+        """Corners relative to each key's (or frame's) camera, zoom included, as a still camera sees them."""
+        zoom = [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in cams]
+        return [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in zip(cams, points, zoom)]
+
     meshes = []
     for key in reference:
         at_frame = reference[key]  # its triangles, uvs and slots: the same in every key, or held from the frame
         name = at_frame.name
+
+        def held(seconds):
+            """Where the frame's corners are `seconds` from it: moved by velocity, or standing still."""
+            return at_frame.positions if at_frame.velocity is None else at_frame.positions + at_frame.velocity * seconds
+
         poses = [poses_k.get(key) for poses_k, _ in snaps]
         changes = any(p is None or p.signature != at_frame.signature for p in poses)
         if changes:
@@ -428,9 +438,7 @@ def build(engine, depsgraph, settings, height):
             # Stand still at the frame, or move along the velocity (units per second) from there.
             if at_frame.velocity is not None:
                 report.moved_by_velocity.append(name)
-                positions = [at_frame.positions + at_frame.velocity * ((t - frame_time) / fps) for t in times]
-            else:
-                positions = [at_frame.positions for _ in times]
+            positions = [held((t - frame_time) / fps) for t in times]
             normals = [at_frame.normals for _ in times]
         else:
             positions = [p.positions for p in poses]
@@ -442,22 +450,12 @@ def build(engine, depsgraph, settings, height):
             frame_positions = []
             for d, (poses_f, _) in zip((-1.0, 0.0, 1.0), frames):
                 p = poses_f.get(key)
-                if p is not None and p.signature == at_frame.signature:
-                    frame_positions.append(p.positions)
-                elif at_frame.velocity is not None:
-                    frame_positions.append(at_frame.positions + at_frame.velocity * (d / fps))
-                else:
-                    frame_positions.append(at_frame.positions)
+                frame_positions.append(p.positions if p is not None and p.signature == at_frame.signature else held(d / fps))
         if bake:
-            # Each key's corners relative to that key's camera, zoom included, seen by a still camera.
-            zoom = [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in cameras]
-            positions = [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in zip(cameras, positions, zoom)]
+            positions = baked(cameras, positions)
             normals = [n @ c.rotation for c, n in zip(cameras, normals)]
             if frame_positions is not None:
-                # The frames' corners likewise, each relative to its frame's camera.
-                frame_cams = [c for _, c in frames]
-                frame_positions = [c.to_camera(p) * np.array([z, z, 1.0]) for c, p, z in
-                                   zip(frame_cams, frame_positions, [math.tan(0.5 * cameras[0].fov) / math.tan(0.5 * c.fov) for c in frame_cams])]
+                frame_positions = baked([c for _, c in frames], frame_positions)
         slots = at_frame.slots
         for slot in np.unique(at_frame.material_index):
             tris = np.nonzero(at_frame.material_index == slot)[0]

@@ -34,6 +34,19 @@ bool allFinite(const std::vector<float>& values) {
     return std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
 }
 
+// The scene camera of an API camera (`where` names it in errors): moving from its open to its
+// close pose, or held at its open pose.
+streak::Camera cameraOf(const Camera& in, const std::string& where, bool isMoving) {
+    if (!(in.verticalFovDegrees > 0.0f && in.verticalFovDegrees < 180.0f) || !(in.zNear > 0.0f))
+        throw Error(where + ": the field of view must be in (0, 180) degrees and zNear positive");
+    streak::Camera out;
+    out.open = poseOf(in.open, "open");
+    out.close = isMoving ? poseOf(in.close, "close") : out.open;
+    out.verticalFov = glm::radians(in.verticalFovDegrees);
+    out.zNear = in.zNear;
+    return out;
+}
+
 streak::Mesh meshOf(const Mesh& in, std::size_t index, std::size_t numMaterials) {
     const std::string where = "mesh " + std::to_string(index);
     if (in.keys < 2) throw Error(where + ": needs at least 2 key poses, got " + std::to_string(in.keys));
@@ -207,12 +220,7 @@ Scene Scene::fromArrays(const std::vector<Mesh>& meshes, const std::vector<Mater
         scene.materials.push_back(m);
     }
     for (std::size_t i = 0; i < meshes.size(); ++i) scene.meshes.push_back(meshOf(meshes[i], i, materials.size()));
-    if (!(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f) || !(camera.zNear > 0.0f))
-        throw Error("camera: the field of view must be in (0, 180) degrees and zNear positive");
-    scene.camera.open = poseOf(camera.open, "open");
-    scene.camera.close = poseOf(camera.close, "close");
-    scene.camera.verticalFov = glm::radians(camera.verticalFovDegrees);
-    scene.camera.zNear = camera.zNear;
+    scene.camera = cameraOf(camera, "camera", /*isMoving=*/true);
     scene.background = backgroundOf(background);
     impl->cleanup = validateScene(scene);
     impl->numArrayMeshes = meshes.size();
@@ -233,20 +241,14 @@ Scene Scene::withFrames(const std::vector<std::vector<float>>& framePositions, c
         if (in.size() != 3 * n * 3)
             throw Error("withFrames: mesh " + std::to_string(kept[m]) + " needs 3 x " + std::to_string(n) + " x 3 floats (its vertices at 3 frames), got " +
                         std::to_string(in.size()));
-        if (!std::all_of(in.begin(), in.end(), [](float v) { return std::isfinite(v); }))
+        if (!allFinite(in))
             throw Error("withFrames: mesh " + std::to_string(kept[m]) + " has a position that is not finite");
         std::array<std::vector<glm::vec3>, 3>& out = frames.positions.emplace_back();
         for (std::size_t k = 0; k < 3; ++k)
             for (std::size_t v = 0; v < n; ++v) out[k].emplace_back(in[(k * n + v) * 3], in[(k * n + v) * 3 + 1], in[(k * n + v) * 3 + 2]);
     }
     for (std::size_t k = 0; k < 3; ++k) {
-        const Camera& c = frameCameras[k];
-        if (!(c.verticalFovDegrees > 0.0f && c.verticalFovDegrees < 180.0f) || !(c.zNear > 0.0f))
-            throw Error("withFrames: camera " + std::to_string(k) + ": the field of view must be in (0, 180) degrees and zNear positive");
-        streak::Camera& out = frames.cameras[k];
-        out.open = out.close = poseOf(c.open, "open");
-        out.verticalFov = glm::radians(c.verticalFovDegrees);
-        out.zNear = c.zNear;
+        frames.cameras[k] = cameraOf(frameCameras[k], "withFrames: camera " + std::to_string(k), /*isMoving=*/false);
     }
     impl->arrayFrames = std::move(frames);
     return Impl::wrap(std::move(impl));

@@ -14,20 +14,6 @@
 
 namespace streak::exposure {
 
-// Adaptive antialiasing for the exact methods (RenderSettings::adaptiveThreshold): where a pixel
-// needs its N x N samples, and where one does.
-//
-// Exact time spans make a pixel's colour smooth along the motion, so what point samples alias is
-// space: silhouettes, creases and material edges. Most of an image has none, so the methods take
-// two passes. The first gives every pixel one sample, at its centre (the --aa 1 pattern), exact
-// over the shutter as always. A pixel is then refined, its colour and passes made again from the
-// full pattern alone, where it or one of its 8 neighbours differs from it by more than the
-// threshold in display terms: sRGB-encoded colour (clamped to [0, 1], what PSNR and the eye
-// judge) or coverage. This is Mitchell's contrast refinement (1987), on exact spans. A motion-
-// blurred edge ramps over many pixels, each close to the next, so it mostly stays at one sample;
-// a still or slow edge, and any edge across the motion, is refined. What one centre sample and
-// its neighbours all miss (a sliver thinner than a pixel that no centre sees) is not; a lower
-// threshold refines more, 0 every pixel whose neighbourhood is not flat.
 // What the first pass saw besides colour, for the geometry one centre sample can miss whole: a
 // stroke of text, a wire, a thin edge-on part narrower than a pixel between the centres. Per
 // pixel, the surfaces its sample showed (a set of (mesh, material) keys, 64 bits of a hash) and
@@ -79,6 +65,20 @@ private:
     tbb::enumerable_thread_specific<std::vector<Unseen>> m_unseen;
 };
 
+// Adaptive antialiasing for the exact methods (RenderSettings::adaptiveThreshold): where a pixel
+// needs its N x N samples, and where one does.
+//
+// Exact time spans make a pixel's colour smooth along the motion, so what point samples alias is
+// space: silhouettes, creases and material edges. Most of an image has none, so the methods take
+// two passes. The first gives every pixel one sample, at its centre (the --aa 1 pattern), exact
+// over the shutter as always. A pixel is then refined, its colour and passes made again from the
+// full pattern alone, where it or one of its 8 neighbours differs from it by more than the
+// threshold in display terms: sRGB-encoded colour (clamped to [0, 1], what PSNR and the eye
+// judge) or coverage. This is Mitchell's contrast refinement (1987), on exact spans. A motion-
+// blurred edge ramps over many pixels, each close to the next, so it mostly stays at one sample;
+// a still or slow edge, and any edge across the motion, is refined. What one centre sample and
+// its neighbours all miss (a sliver thinner than a pixel that no centre sees) is not; a lower
+// threshold refines more, 0 every pixel whose neighbourhood is not flat.
 class AdaptiveSampling {
 public:
     // The region a first pass renders: the asked one grown by a pixel on each side, within the

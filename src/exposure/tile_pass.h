@@ -351,6 +351,15 @@ void noteUnseenItems(std::span<const std::uint32_t> items, std::span<const raste
     }
 }
 
+// Tells a first pass of adaptive sampling what pixel (x, y)'s one sample showed: the surfaces of
+// its opaque pieces, and, where opaque surfaces covered it all the shutter (isOpaque), the
+// farthest depth it saw there.
+inline void tellFirstPass(FirstPassGeometry& firstPass, int x, int y, std::span<const VisiblePiece> pieces, const std::vector<FlatTriangle>& triangles,
+                          bool isOpaque, float farthest) {
+    for (const VisiblePiece& piece : pieces) firstPass.show(x, y, triangles[piece.triangle].mesh, triangles[piece.triangle].material);
+    if (isOpaque) firstPass.setReach(x, y, farthest);
+}
+
 // The key and nearest view depth of a segment for noteUnseenItems, from its triangle and its
 // nearness (1 / its nearest view depth, 0 where unknown).
 inline std::pair<std::uint64_t, float> unseenSurface(const FlatTriangle& triangle, float nearness) {
@@ -391,17 +400,12 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
         if (firstPass) {
             // One sample per pixel, at its centre.
             const int px = std::clamp(int(std::floor((ndc.x + 1.0) * 0.5 * width)), 0, width - 1);
-            for (const VisiblePiece& piece : scratch.resolve.pieces) {
-                const FlatTriangle& t = triangles[piece.triangle];
-                firstPass->show(px, row, t.mesh, t.material);
-            }
             bool isOpaque = scratch.resolve.coverage >= 1.0f - 1e-5f;
             for (const ExposureInterval& interval : list) isOpaque = isOpaque && !materialOf(triangleOf(interval.source)).isTranslucent();
-            if (isOpaque) {
-                float farthest = 0.0f;
+            float farthest = 0.0f;
+            if (isOpaque)
                 forEachShownSurface(list, scratch.resolve, [&](std::uint32_t, float, float, float, float far) { farthest = std::max(farthest, far); });
-                firstPass->setReach(px, row, farthest);
-            }
+            tellFirstPass(*firstPass, px, row, scratch.resolve.pieces, triangles, isOpaque, farthest);
         }
         if (passes) {
             forEachShownSurface(list, scratch.resolve, [&](std::uint32_t source, float share, float depth, float nearest, float farthest) {

@@ -34,10 +34,12 @@ public:
         // The passes, when asked for: what each sample shows at each instant (SampledPasses).
         std::optional<exposure::SampledPasses> passes;
         const exposure::InstantSchedule schedule(scene.shutter, m_samples, settings.height);
+        // Each instant's weight in the frame (a non-uniform schedule weighs its own instants).
+        const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
         if (settings.passes.any())
             passes.emplace(scene, geometry.triangles(), settings.passes, settings.width, settings.height,
                            settings.region.value_or(raster::PixelBounds{0, 0, settings.width - 1, settings.height - 1}),
-                           (schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f) / float(pattern.count()));
+                           norm / float(pattern.count()));
         const exposure::InstantDraw draw{settings.shading, std::numeric_limits<std::uint32_t>::max(), passes.has_value()};
         double numFragments = 0.0;
 
@@ -81,7 +83,6 @@ public:
         }
 
         Image image(settings.width, settings.height);
-        const float norm = schedule.isUniform() ? 1.0f / float(m_samples) : 1.0f;
         for (std::size_t i = 0; i < sum.size(); ++i) image.pixels()[i] = sum[i] * norm, coverage[i] *= norm;
         image.setAlpha(std::move(coverage));
         if (passes) passes->writeTo(image, context.stats);

@@ -134,31 +134,15 @@ public:
                 exposure::FirstPassGeometry* firstPass) {
                 frame.pattern = pattern, frame.firstPass = firstPass;
                 grid.emplace(frame.viewport, kTileSize, region);
-                {
-                    PhaseTimer timer(context.stats, "bin");
-                    grid->bin(frame.bounds.size(), [&](std::size_t i) { return frame.bounds[i]; });
-                }
-                Image pixels(settings.width, settings.height, scene.background);
-                pixels.setUncovered();
-                budget.measure();
-                PhaseTimer timer(context.stats, "tiles");
-                const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
-                PartsProgress tiles(progress, std::size_t(grid->numActiveTiles()));
-                grid->forEachTile([&](int tile) {
-                    TileScratch& local = scratch.local();
+                return exposure::runTilePass(*grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width,
+                                             settings.height, context.stats, progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
                     local.movingTriangles.clear();
                     local.seenPaths.clear();
-                    renderPixels(frame, *grid, tile, grid->tileBounds(tile), shareFragments, local, pixels);
+                    renderPixels(frame, *grid, tile, grid->tileBounds(tile), budget.maxItems(kBytesPerFragment), local, pixels);
                     if (firstPass)
                         exposure::noteUnseenItems(grid->items(tile), std::span<const raster::PixelBounds>(frame.bounds), grid->tileBounds(tile),
-                                                  local.seenPaths, *firstPass, [&](std::uint32_t path) {
-                            const exposure::TriangleSegment& segment = frame.paths[path];
-                            return exposure::unseenSurface(frame.geometry.triangles()[segment.triangle], segment.nearness);
-                        });
-                    tiles.partDone();
-                }, /*includeEmpty=*/true);
-                if (progress) progress->update(1.0);
-                return pixels;
+                                                  local.seenPaths, *firstPass, [&](std::uint32_t path) { return frame.unseenSurfaceOf(path); });
+                });
             },
             [&](const exposure::AdaptiveSampling& marks, Image& pixels, ProgressReporter* progress) {
                 frame.pattern = fullPattern, frame.firstPass = nullptr;
@@ -274,6 +258,11 @@ private:
         raster::Viewport viewport;
         raster::SamplePattern pattern;
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
+
+        // A path's surface and nearest depth, for the first pass's unseen paths.
+        std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t path) const {
+            return exposure::unseenSurface(geometry.triangles()[paths[path].triangle], paths[path].nearness);
+        }
         exposure::SegmentedGeometry segmented;
         const FlatGeometry& geometry;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
@@ -610,10 +599,6 @@ private:
                 if (spans.empty()) continue;
                 if (frame.firstPass) {
                     const int pixel = int(first / std::size_t(spp)), px = rect.x0 + pixel % tileWidth, py = rect.y0 + pixel / tileWidth;
-                    for (const exposure::VisiblePiece& piece : spans) {
-                        const FlatTriangle& t = frame.geometry.triangles()[piece.triangle];
-                        frame.firstPass->show(px, py, t.mesh, t.material);
-                    }
                     // How deep it saw: opaque all the shutter, nothing beyond its intervals.
                     bool isOpaque = scratch.backgroundWeights[i] <= 1e-5f;
                     float farthest = 0.0f;
@@ -623,7 +608,7 @@ private:
                         isOpaque = !frame.scene.materials[frame.geometry.triangles()[frame.paths[interval.source].triangle].material].isTranslucent();
                         farthest = std::max(farthest, interval.maxDepth());
                     }
-                    if (isOpaque) frame.firstPass->setReach(px, py, farthest);
+                    exposure::tellFirstPass(*frame.firstPass, px, py, spans, frame.geometry.triangles(), isOpaque, farthest);
                 }
                 exposure::mergeAbuttingPieces(spans);
                 scratch.pixelShading.add(s, sampleNdc(frame, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
