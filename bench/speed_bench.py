@@ -26,6 +26,11 @@ the default --memory-budget and at each of --budgets (MB, default 1000): wall, p
 was resident when the tiles began, the share per thread, the tiles halved and the pixels cut,
 and the image against the default budget's (inf: halving tiles is exact).
 
+Section models: every shared model at the ground-truth bench's 320x240 view (its frame, shutter
+and animation; unlit, black background), analytic and motion-path at --aa 3 and analytic with
+--adaptive 0.02: render time, least of the repeats, with --baseline the build before beside it
+(alternating) and the images compared (inf: the change is exact).
+
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
 Section memory: peak resident memory of each method (the process's maxrss) on the profile's
@@ -38,7 +43,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,budget,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,budget,models,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--plot docs]
 """
 import argparse
 import json
@@ -222,6 +227,33 @@ def budget(args, tmp):
     print()
 
 
+def models(args, tmp):
+    from ground_truth_bench import MODELS, SCENES  # the views the Cycles scores are taken at
+    print("### The shared models (render ms, least of the repeats; 320x240 unlit)\n")
+    binaries = [("this build", args.streak)] + ([("baseline", args.baseline)] if args.baseline else [])
+    variants = [("analytic --aa 3", ["-m", "analytic", "--aa", "3"]), ("motion-path --aa 3", ["-m", "motion-path", "--aa", "3"]),
+                ("analytic --aa 3 --adaptive 0.02", ["-m", "analytic", "--aa", "3", "--adaptive", "0.02"])]
+    print("| model | method | " + " | ".join(label for label, _ in binaries) +
+          (" | baseline / this build | images apart |" if args.baseline else " |"))
+    print("|---|---|" + "---:|" * len(binaries) + ("---:|---:|" if args.baseline else ""))
+    for name, path, flags in MODELS:
+        case_args = [os.path.join(SCENES, path), "--width", "320", "--height", "240", "--shading", "unlit", "--background", "0,0,0"]
+        case_args += [f"--{k}={v}" for k, v in flags.items()]
+        if not os.path.exists(case_args[0]):
+            continue
+        for variant, variant_args in variants:
+            best = {}
+            for _ in range(args.repeats):
+                for label, binary in binaries:
+                    stats, _ = run(binary, case_args, variant_args, os.path.join(tmp, f"{label}.exr"), os.path.join(tmp, "s.json"))
+                    best[label] = min(best.get(label, float("inf")), stats["time_ms"]["render"])
+            cells = " | ".join(f"{best[label]:.0f}" for label, _ in binaries)
+            tail = (f" | {best['baseline'] / best['this build']:.2f} | "
+                    f"{psnr(args.streak, os.path.join(tmp, 'this build.exr'), os.path.join(tmp, 'baseline.exr'))} |") if args.baseline else " |"
+            print(f"| {name} | {variant} | {cells}{tail}", flush=True)
+    print()
+
+
 def threads(args, tmp):
     print("### Thread scaling (render ms, least of the repeats)\n")
     print("| scene | method | 1 thread | 2 threads | scaling |")
@@ -292,7 +324,7 @@ def main():
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "budget": budget, "threads": threads, "memory": memory,
+    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "budget": budget, "models": models, "threads": threads, "memory": memory,
                 "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):

@@ -91,6 +91,8 @@ bool CurvedSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) cons
     return true;
 }
 
+int CurvedSurfacePoint::materialIndex() const { return int(m_geometry.flat().triangles()[m_triangle].material); }
+
 ShadedColor shadeCurvedSpan(const CurvedGeometry& geometry, const raster::Viewport& viewport, ShadingMode mode, const SpanShadingSettings& settings,
                             std::uint32_t triangle, float t0, float t1, const ShadingSite& site, CurvedTriangleCache& cache) {
     return shadeTimeSpan(geometry.flat().scene(), mode, t0, t1, CurvedSurfacePoint(geometry, viewport, site, triangle, cache), settings);

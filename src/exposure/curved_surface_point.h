@@ -32,6 +32,7 @@ public:
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
+    int materialIndex() const override;
 
 private:
     const CurvedSegment& select(float t) const;

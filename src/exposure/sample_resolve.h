@@ -10,7 +10,6 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -67,8 +66,6 @@ template <class TriangleOf, class IsTranslucent, class Shade>
 glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const OracleWeights& oracle, const ExactDepth* exactDepth,
                         bool cullHidden, const ShutterWindow& window, const glm::vec3& background, TriangleOf&& triangleOf, IsTranslucent&& isTranslucent, Shade&& shade,
                         SampleResolveScratch& scratch, SampleResolveCounters& counters) {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
     counters.intervals += std::int64_t(list.size());
     counters.maxIntervals = std::max(counters.maxIntervals, std::int64_t(list.size()));
     const bool isCompressing = budget > 0 && int(list.size()) > budget;
@@ -96,8 +93,6 @@ glm::vec3 resolveSample(std::vector<ExposureInterval>& list, int budget, const O
     else
         backgroundWeight = resolveOpaque(list, scratch.weights, window, exactDepth, exactDepth ? &counters.misorderedTime : nullptr,
                                          exactDepth ? &counters.coveredPairTime : nullptr, &scratch.visible);
-    const auto resolved = Clock::now();
-    counters.resolveSeconds += std::chrono::duration<double>(resolved - start).count();
 
     scratch.coverage = 1.0f - backgroundWeight;
     glm::vec3 sum = background * backgroundWeight;

@@ -114,15 +114,27 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const std::array<float, 3> times = window.isIdentity() ? std::array<float, 3>{t0, 0.5f * (t0 + t1), t1}
                                                            : std::array<float, 3>{window.timeBetween(t0, t1, 0.0f), window.timeBetween(t0, t1, 0.5f),
                                                                                   window.timeBetween(t0, t1, 1.0f)};
+    // An untextured material's colour is its base colour times the vertex colour, which changes
+    // slowly across a triangle: unlit, the middle's serves the whole span (as below), and lit or
+    // as a pass, no texture footprint is needed. Where the method does not say the material
+    // (-1), every point takes its footprint.
+    const int knownMaterial = point.materialIndex();
+    const bool isUntextured = knownMaterial >= 0 && scene.materials[std::size_t(knownMaterial)].baseColorTexture < 0;
+    if (isUntextured && mode == ShadingMode::Unlit) {
+        SurfacePoint middle;
+        if (!point.at(times[1], false, middle)) return {glm::vec3(0.0f), 0.0f};
+        return materialAlbedo(scene, middle.material, middle.uv, {}, middle.vertexColor);
+    }
+    const bool withFootprint = !isUntextured && mode != ShadingMode::Normal && !isVectorPass(mode);
     std::array<SurfacePoint, 3> ends;
     // A still point is the same at every time: its middle serves as both ends.
     const bool isStill = point.isStill(t0, t1);
     if (isStill) {
-        if (!point.at(times[1], true, ends[1])) return {glm::vec3(0.0f), 0.0f};
+        if (!point.at(times[1], withFootprint, ends[1])) return {glm::vec3(0.0f), 0.0f};
         ends[0] = ends[2] = ends[1];
     } else {
         for (int i = 0; i < 3; ++i)
-            if (!point.at(times[i], true, ends[i])) return {glm::vec3(0.0f), 0.0f};
+            if (!point.at(times[i], withFootprint, ends[i])) return {glm::vec3(0.0f), 0.0f};
     }
     if (mode == ShadingMode::Normal || isVectorPass(mode)) {
         // The normal and vector passes: the span's mean (Simpson's weights over its ends and

@@ -42,6 +42,11 @@ public:
     // method does not know.
     virtual bool isStill(float /*t0*/, float /*t1*/) const { return false; }
 
+    // The material of every point of the surface, or -1 where the method does not say (then
+    // at() tells it). Knowing it first lets an untextured material skip the texture footprint,
+    // and unlit, all but the span's middle.
+    virtual int materialIndex() const { return -1; }
+
 protected:
     ~MovingSurfacePoint() = default;
 };

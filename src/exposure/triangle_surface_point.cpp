@@ -21,18 +21,23 @@ const TriangleSegment& TriangleSurfacePoint::select(float t) const {
     if (&segment != m_segment) {
         m_segment = &segment;
         m_moving = &m_cache.get(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
-        // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
-        m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
-        m_uvDenominator = {};
-        for (int i = 0; i < 3; ++i) {
-            const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
-            m_weights[std::size_t(i)] = e;
-            const glm::dvec2 uv(m_uv[i]);
-            m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
-            m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
-        }
+        m_hasUvRatio = false;
     }
     return segment;
+}
+
+void TriangleSurfacePoint::makeUvRatio() const {
+    // Corner i's weight is the edge function of the edge opposite it, edge (i + 1) % 3.
+    m_uvNumerator = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
+    m_uvDenominator = {};
+    for (int i = 0; i < 3; ++i) {
+        const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
+        m_weights[std::size_t(i)] = e;
+        const glm::dvec2 uv(m_uv[i]);
+        m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
+        m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
+    }
+    m_hasUvRatio = true;
 }
 
 bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) const {
@@ -77,9 +82,12 @@ bool TriangleSurfacePoint::isStill(float t0, float t1) const {
     return corners.world0 == corners.world1 && corners.normal0 == corners.normal1;
 }
 
+int TriangleSurfacePoint::materialIndex() const { return int(m_geometry.flat().triangles()[m_triangle].material); }
+
 // uv is a ratio of quadratics in u: sum(uv_i E_opposite(u)) / sum(E(u)).
 bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double u = select(t).localTime(t);
+    if (!m_hasUvRatio) makeUvRatio();
     const double denominator = m_uvDenominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
     // A box's taps are clipped to the triangle instead (TextureFootprint::clipTo).

@@ -43,11 +43,13 @@ public:
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
+    int materialIndex() const override;
     // Still: one segment holds [t0, t1], its corners and normals do not move, nor does the camera.
     bool isStill(float t0, float t1) const override;
 
 private:
     const TriangleSegment& select(float t) const;
+    void makeUvRatio() const;
 
     const SegmentedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
@@ -59,6 +61,9 @@ private:
     mutable const TriangleSegment* m_segment = nullptr;  ///< the segment the members below belong to
     MovingTriangleCache& m_cache;
     mutable const raster::MovingTriangle* m_moving = nullptr;
+    // The uv's ratio of quadratics, made for the segment on the first uvAt() there (an
+    // untextured surface never asks).
+    mutable bool m_hasUvRatio = false;
     mutable std::array<glm::dvec2, 3> m_uvNumerator{};  ///< u^2, u, 1 coefficients
     mutable raster::Quadratic m_uvDenominator;
     mutable std::array<raster::Quadratic, 3> m_weights;  ///< corner i's unnormalised barycentric

@@ -20,9 +20,15 @@ public:
     glm::vec2 footprint{1.0f / 1024.0f, 0.0f};
     std::optional<glm::vec2> footprintDown;  ///< duvdy; else footprint with its axes swapped
     std::uint32_t material = 0;
+    bool saysMaterial = false;  ///< materialIndex() tells it, as the methods' points do
+    std::function<glm::vec4(float)> vertexColor = [](float) { return glm::vec4(1.0f); };
+    mutable int evaluations = 0, footprints = 0;  ///< at() calls, and those asking for a footprint
 
+    int materialIndex() const override { return saysMaterial ? int(material) : -1; }
     bool at(float t, bool withFootprint, SurfacePoint& out) const override {
+        ++evaluations, footprints += withFootprint;
         out = {};
+        out.vertexColor = vertexColor(t);
         out.uv = uv(t);
         out.normal = normal(t);
         out.position = glm::vec3(0.0f);
@@ -227,6 +233,44 @@ TEST(ShadeTimeSpan, LightingOfATurningNormalMatchesABruteForceMean) {
     coarse.maxLightingTaps = 1;
     const ShadedColor simpson = shadeTimeSpan(scene, ShadingMode::Phong, 0.0f, 1.0f, point, coarse);
     EXPECT_GT(glm::length(simpson.color - brute), glm::length(c.color - brute));
+}
+
+TEST(ShadeTimeSpan, AnUntexturedMaterialSkipsTheFootprintAndUnlitAllButTheMiddle) {
+    // An untextured material's colour is its base colour times the middle's vertex colour, and
+    // its light needs no texture footprint. Told the material, span shading asks for no
+    // footprint, and unlit evaluates the point once; the colours are those of the point that does
+    // not say its material, to the bit, in every mode. Lit under a turning normal, with a vertex
+    // colour and alpha that change over the span.
+    Scene scene = test::emptyScene();
+    scene.light.toLight = glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f));
+    scene.camera.open = scene.camera.close = CameraPose::lookAt(glm::vec3(0, 0, 5), glm::vec3(0.0f));
+    const std::uint32_t m = test::addMaterial(scene, glm::vec3(0.8f, 0.5f, 0.2f), 0.7f);
+    scene.materials[m].alphaMode = AlphaMode::Blend;
+    scene.materials[m].specular = 0.5f;
+    for (const ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Phong, ShadingMode::Normal}) {
+        ScriptedPoint told, untold;
+        for (ScriptedPoint* p : {&told, &untold}) {
+            p->material = m;
+            p->normal = [](float t) { const float a = -0.4f + 0.8f * t; return glm::vec3(std::sin(a), 0.0f, std::cos(a)); };
+            p->vertexColor = [](float t) { return glm::vec4(0.5f + 0.5f * t, 1.0f - t, 0.25f, 1.0f - 0.5f * t); };
+        }
+        told.saysMaterial = true;
+        const ShadedColor fast = shadeTimeSpan(scene, mode, 0.1f, 0.7f, told);
+        const ShadedColor full = shadeTimeSpan(scene, mode, 0.1f, 0.7f, untold);
+        EXPECT_EQ(fast.color, full.color) << "mode " << int(mode);
+        EXPECT_EQ(fast.alpha, full.alpha) << "mode " << int(mode);
+        EXPECT_EQ(told.footprints, 0) << "mode " << int(mode);
+        EXPECT_GT(untold.footprints, 0) << "mode " << int(mode);
+        if (mode == ShadingMode::Unlit) EXPECT_EQ(told.evaluations, 1);
+    }
+    // The vertex colour and opacity are the middle's (t = 0.4), times the material's.
+    ScriptedPoint point;
+    point.material = m, point.saysMaterial = true;
+    point.vertexColor = [](float t) { return glm::vec4(0.5f + 0.5f * t, 1.0f - t, 0.25f, 1.0f - 0.5f * t); };
+    const ShadedColor c = shadeTimeSpan(scene, ShadingMode::Unlit, 0.1f, 0.7f, point);
+    EXPECT_NEAR(c.color.x, 0.8f * 0.7f, 1e-6f);
+    EXPECT_NEAR(c.color.y, 0.5f * 0.6f, 1e-6f);
+    EXPECT_NEAR(c.alpha, 0.7f * 0.8f, 1e-6f);
 }
 
 TEST(ShadeTimeSpan, OpacityIsTheMeanTextureAlphaTimesTheMaterials) {
