@@ -121,9 +121,9 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const int knownMaterial = point.materialIndex();
     const bool isUntextured = knownMaterial >= 0 && scene.materials[std::size_t(knownMaterial)].baseColorTexture < 0;
     if (isUntextured && mode == ShadingMode::Unlit) {
-        SurfacePoint middle;
-        if (!point.at(times[1], false, middle)) return {glm::vec3(0.0f), 0.0f};
-        return materialAlbedo(scene, middle.material, middle.uv, {}, middle.vertexColor);
+        glm::vec4 vertexColor;
+        if (!point.vertexColorAt(times[1], vertexColor)) return {glm::vec3(0.0f), 0.0f};
+        return materialAlbedo(scene, std::uint32_t(knownMaterial), glm::vec2(0.0f), {}, vertexColor);
     }
     const bool withFootprint = !isUntextured && mode != ShadingMode::Normal && !isVectorPass(mode);
     std::array<SurfacePoint, 3> ends;
@@ -173,7 +173,8 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     const Texture& texture = scene.textures[std::size_t(material.baseColorTexture)];
     const glm::vec2 size(float(texture.width()), float(texture.height()));
     std::array<float, 3> footprintLod{};
-    for (int i = 0; i < 3; ++i) footprintLod[i] = texture.finestLodOfFootprint(ends[i].duvdx, ends[i].duvdy);
+    footprintLod[0] = texture.finestLodOfFootprint(ends[0].duvdx, ends[0].duvdy);
+    for (int i = 1; i < 3; ++i) footprintLod[i] = isStill ? footprintLod[0] : texture.finestLodOfFootprint(ends[i].duvdx, ends[i].duvdy);
     const float spacing = std::exp2(std::max(0.0f, *std::min_element(footprintLod.begin(), footprintLod.end())));
     // The footprint moves along the span with the surface: quadratic through its three ends.
     const QuadraticThrough<glm::vec2> duvdxAt(ends[0].duvdx, ends[1].duvdx, ends[2].duvdx);

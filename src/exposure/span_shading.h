@@ -6,6 +6,7 @@
 #include "util/stats.h"
 
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <string>
@@ -26,6 +27,15 @@ public:
         SurfacePoint p;
         if (!at(t, false, p)) return false;
         uv = p.uv;
+        return true;
+    }
+
+    // Only the vertex colour at time t: all an untextured unlit span needs. Override where it is
+    // cheaper than at().
+    virtual bool vertexColorAt(float t, glm::vec4& color) const {
+        SurfacePoint p;
+        if (!at(t, false, p)) return false;
+        color = p.vertexColor;
         return true;
     }
 

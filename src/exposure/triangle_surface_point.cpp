@@ -75,6 +75,16 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     return true;
 }
 
+bool TriangleSurfacePoint::vertexColorAt(float t, glm::vec4& color) const {
+    const TriangleSegment& segment = select(t);
+    raster::HomogeneousSample s = m_moving->sample(segment.localTime(t), m_ndc);
+    if (!s.isValid) return false;
+    if (m_clamp) s.bary = clampedBarycentrics(s.bary);
+    const FlatGeometry& flat = m_geometry.flat();
+    color = flat.vertexColorAt(flat.triangles()[m_triangle], glm::vec3(s.bary));
+    return true;
+}
+
 bool TriangleSurfacePoint::isStill(float t0, float t1) const {
     const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t0);
     if (&segment != &m_geometry.segmentAt(m_triangle, t1) || !m_geometry.scene().camera.isStatic()) return false;

@@ -41,6 +41,7 @@ public:
 
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
+    bool vertexColorAt(float t, glm::vec4& color) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
     int materialIndex() const override;
