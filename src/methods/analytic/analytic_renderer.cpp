@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -39,13 +40,14 @@ struct Options {
     exposure::ExactResolveOptions resolve;
     bool tileCull = true;  ///< skip the tiles, and the samples of a box, a segment stays outside
     bool hullCull = true;  ///< and a moving segment's samples beyond its swept hull (with tileCull)
+    bool earlyCull = true; ///< skip the samples where nearer opaque triangles hide a segment all the shutter (renderRect)
     bool checkDepthOrder = false;
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
 };
 
 struct Counters {
-    std::int64_t culledBackFacing = 0, tileTests = 0, tilesCulled = 0, samplesCulled = 0;
+    std::int64_t culledBackFacing = 0, tileTests = 0, tilesCulled = 0, samplesCulled = 0, samplesHidden = 0;
     raster::RootCaseCounts roots;
     double intervalSeconds = 0;
     exposure::SampleResolveCounters resolve;
@@ -57,6 +59,7 @@ struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, C
     raster::EdgeBatch batch;
     raster::SweptHull hull;
     raster::SweptPieces pieces;  // where a segment has no hull (it turns over)
+    std::vector<float> coveredFarthest;  ///< per tile sample: see renderRect's early cull
 };
 
 class AnalyticRenderer final : public Renderer {
@@ -88,7 +91,7 @@ public:
             budgetTotal.add(s.budget);
             const Counters& c = s.counters;
             total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests, total.tilesCulled += c.tilesCulled;
-            total.samplesCulled += c.samplesCulled;
+            total.samplesCulled += c.samplesCulled, total.samplesHidden += c.samplesHidden;
             total.roots.add(c.roots);
             total.intervalSeconds += c.intervalSeconds;
             total.resolve.add(c.resolve);
@@ -111,6 +114,7 @@ public:
         stats.setCounter("tile_tests", double(total.tileTests));
         stats.setCounter("tiles_culled", double(total.tilesCulled));
         stats.setCounter("samples_culled", double(total.samplesCulled));
+        stats.setCounter("samples_hidden_before_solving", double(total.samplesHidden));
         stats.setCounter("roots_constant", double(total.roots.constant));
         stats.setCounter("roots_linear", double(total.roots.linear));
         stats.setCounter("roots_none", double(total.roots.noRealRoot));
@@ -203,6 +207,16 @@ private:
         scratch.records.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         const std::size_t numSamples = scratch.sampleNdc.size();
+        // The early cull: a sample an opaque triangle covers all the shutter keeps the farthest
+        // depth of that triangle there (the nearest such), and a later segment whose nearest
+        // depth lies beyond it is wholly hidden there, so it is not solved. The resolve's
+        // occlusion cull would drop each such interval (an opaque interval over [0, 1] wholly
+        // nearer hides it), so the images are the same; it is off where the resolve sees every
+        // interval (a budget to compress to, the depth-order check, occlusion-cull=0) and in
+        // adaptive sampling's first pass, whose unseen-segment rule counts intervals.
+        const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
+                                    !frame.options.checkDepthOrder && !frame.firstPass;
+        if (isCullingEarly) scratch.coveredFarthest.assign(numSamples, std::numeric_limits<float>::infinity());
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
         for (std::size_t k = 0; k < items.size(); ++k) {
@@ -229,6 +243,9 @@ private:
             // edge quadratics and staysOutside answers in batches (EdgeBatch, SIMD), then the
             // exact spans of the samples not culled, as records, in the run's order.
             const int cullOrientation = frame.options.tileCull ? segment.orientation : 0;
+            // Below the nearest depth by more than the rounding of an interval's float depths.
+            const float nearest = isCullingEarly && segment.nearness > 0.0f ? (1.0f - 1e-5f) / segment.nearness : -std::numeric_limits<float>::infinity();
+            const bool isOccluder = isCullingEarly && !scene.materials[tri.material].isTranslucent();
             auto visitRun = [&](std::uint32_t first, std::ptrdiff_t stride, int count) __attribute__((always_inline)) {
                 for (int done = 0; done < count; done += raster::EdgeBatch::kCapacity) {
                     const int n = std::min(count - done, raster::EdgeBatch::kCapacity);
@@ -240,6 +257,10 @@ private:
                             continue;
                         }
                         const auto sample = std::uint32_t(batchFirst + i * stride);
+                        if (isCullingEarly && scratch.coveredFarthest[sample] < nearest) {
+                            ++counters.samplesHidden;
+                            continue;
+                        }
                         const glm::dvec2 ndc = scratch.sampleNdc[sample];
                         std::array<double, 8> b;
                         const int m = raster::insideSpansOf(moving, scratch.batch, i, ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
@@ -260,6 +281,8 @@ private:
                             r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
                             r.interval.source = index;
                             scratch.records.push_back(r);
+                            if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
+                                scratch.coveredFarthest[sample] = std::min(scratch.coveredFarthest[sample], std::max(r.interval.depth0, r.interval.depth1));
                         }
                     }
                 }
@@ -357,6 +380,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.tileCull = options.getInt("tile-cull", 1, 0, 1) != 0;
     o.hullCull = options.getInt("hull-cull", 1, 0, 1) != 0;
     o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
+    o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.spanShading = exposure::spanShadingSettings(options, "analytic");
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
