@@ -58,9 +58,7 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
             right += held - s.bary, down += held - s.bary, s.bary = held;
         }
     } else {
-        s = m_moving->sample(u, m_ndc);
-        if (!s.isValid) return false;
-        if (m_clamp) s.bary = clampedBarycentrics(s.bary);
+        if (!plainSample(u, s)) return false;
         right = down = s.bary;
     }
     std::array<glm::vec3, 3> world, normal;
@@ -75,11 +73,16 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     return true;
 }
 
-bool TriangleSurfacePoint::vertexColorAt(float t, glm::vec4& color) const {
-    const TriangleSegment& segment = select(t);
-    raster::HomogeneousSample s = m_moving->sample(segment.localTime(t), m_ndc);
+bool TriangleSurfacePoint::plainSample(double u, raster::HomogeneousSample& s) const {
+    s = m_moving->sample(u, m_ndc);
     if (!s.isValid) return false;
     if (m_clamp) s.bary = clampedBarycentrics(s.bary);
+    return true;
+}
+
+bool TriangleSurfacePoint::vertexColorAt(float t, glm::vec4& color) const {
+    raster::HomogeneousSample s;
+    if (!plainSample(select(t).localTime(t), s)) return false;
     const FlatGeometry& flat = m_geometry.flat();
     color = flat.vertexColorAt(flat.triangles()[m_triangle], glm::vec3(s.bary));
     return true;

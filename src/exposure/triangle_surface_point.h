@@ -51,6 +51,9 @@ public:
 private:
     const TriangleSegment& select(float t) const;
     void makeUvRatio() const;
+    // The sample at local time u of the selected segment, without neighbours, its barycentrics
+    // held to the triangle where the site asks; false where it cannot be evaluated.
+    bool plainSample(double u, raster::HomogeneousSample& s) const;
 
     const SegmentedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC
