@@ -291,7 +291,9 @@ def render(scene, scene_args, spp_list, out_dir, streak=STREAK, blender="blender
             "scene": scene, "gltf": path, "width": width, "height": height, "frame": frame, "shutter": shutter, "fps": fps,
             "animation": animation, "threads": threads or os.cpu_count(), "motion_steps": motion_steps,
             "linear_textures": linear_textures, "passes": passes,
-            "camera": {key[len("camera_"):]: numbers(value) for key, value in info.items() if key.startswith("camera_")},
+            # (The camera's numbers: its poses, field of view and near plane, not where it came from.)
+            "camera": {key[len("camera_"):]: numbers(value) for key, value in info.items()
+                       if key.startswith("camera_") and key != "camera_source"},
             "renders": [{"spp": spp, "seed": seed + i,
                          "path": os.path.join(os.path.abspath(out_dir), f"cycles-{'passes-' if passes else ''}{spp}.exr")}
                         for i, spp in enumerate(spp_list)],
