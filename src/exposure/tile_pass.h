@@ -225,6 +225,7 @@ struct ExactTileScratch {
     std::vector<float> coverage;
     std::vector<glm::dvec2> sampleNdc;  ///< the tile's samples in NDC, indexed as TileRecord::sample
     std::vector<std::uint32_t> seenSources;  ///< a first pass's items with records in the tile (noteUnseenItems)
+    bool sortRunsBySource = false;  ///< the method found the records out of its items' order: each sample's go back to it
     PixelPasses passes;
     Cache cache;
     Counters counters;
@@ -384,6 +385,20 @@ inline std::pair<std::uint64_t, float> unseenSurface(const FlatTriangle& triangl
     return {FirstPassGeometry::keyBit(triangle.mesh, triangle.material), nearness > 0.0f ? 1.0f / nearness : 0.0f};
 }
 
+// Puts each sample's records (runs[i] to runs[i + 1] of bySample) in the order of their sources,
+// keeping the order of one source's: the order of a method that visits its items in ascending
+// order, for a method that visited them in another (analytic's nearest first). A run is
+// short (the intervals a sample sees), so insertion sort.
+inline void sortRunsBySource(std::span<const std::uint32_t> runs, std::vector<TileRecord>& bySample) {
+    for (std::size_t i = 0; i + 1 < runs.size(); ++i)
+        for (std::uint32_t k = runs[i] + 1; k < runs[i + 1]; ++k) {
+            const TileRecord r = bySample[k];
+            std::uint32_t j = k;
+            for (; j > runs[i] && bySample[j - 1].interval.source > r.interval.source; --j) bySample[j] = bySample[j - 1];
+            bySample[j] = r;
+        }
+}
+
 // The shared second half of an exact method's tile, once its intervals are in scratch.records
 // (their search began at intervalStart, and is timed up to their grouping): groups them by
 // sample, resolves every sample exactly (resolveSample, compressing to the budget) and shades
@@ -400,6 +415,7 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
                       PassFrame* passes = nullptr, FirstPassGeometry* firstPass = nullptr) {
     const std::size_t numSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(rect.y1 - rect.y0 + 1) * std::size_t(pattern.count());
     raster::groupBySample(std::span<const TileRecord>(scratch.records), numSamples, scratch.runs, scratch.bySample);
+    if (scratch.sortRunsBySource) sortRunsBySource(scratch.runs, scratch.bySample);
     scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - intervalStart).count();
 
     auto materialOf = [&](std::uint32_t triangle) -> const Material& { return scene.materials[triangles[triangle].material]; };

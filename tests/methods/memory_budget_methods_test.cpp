@@ -41,9 +41,9 @@ Scene deepStack() {
 Image renderWithShare(const std::string& method, const Scene& scene, std::uint64_t shareBytes, RenderStats& stats) {
     OptionMap options;
     if (method == "accumulation") options.set("samples", "1024");
-    // analytic would not solve the still quads behind the first (its early cull): the lists
-    // must be deep for the budget to split and cut them.
-    if (method == "analytic") options.set("early-cull", "0");
+    // analytic would not solve the still quads behind the first, nor motion-path build them
+    // (their early cull): the lists must be deep for the budget to split and cut them.
+    if (method == "analytic" || method == "motion-path") options.set("early-cull", "0");
     std::unique_ptr<Renderer> renderer = createRenderer(method, options);
     RenderSettings settings;
     settings.width = kWidth, settings.height = kHeight, settings.aa = kAa, settings.shading = ShadingMode::Unlit;

@@ -1,5 +1,6 @@
 #include "methods/analytic/analytic_renderer.h"
 
+#include "exposure/early_cull.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_resolve.h"
 #include "exposure/tile_pass.h"
@@ -59,7 +60,9 @@ struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, C
     raster::EdgeBatch batch;
     raster::SweptHull hull;
     raster::SweptPieces pieces;  // where a segment has no hull (it turns over)
-    std::vector<float> coveredFarthest;  ///< per tile sample: see renderRect's early cull
+    exposure::EarlyCull earlyCull;
+    std::vector<std::uint32_t> nearFirst;  ///< the tile's segments nearest first, for the early cull
+    std::span<const std::uint32_t> nearFirstOf;  ///< the items nearFirst orders (a tile's runs share them)
 };
 
 class AnalyticRenderer final : public Renderer {
@@ -207,16 +210,26 @@ private:
         scratch.records.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         const std::size_t numSamples = scratch.sampleNdc.size();
-        // The early cull: a sample an opaque triangle covers all the shutter keeps the farthest
-        // depth of that triangle there (the nearest such), and a later segment whose nearest
-        // depth lies beyond it is wholly hidden there, so it is not solved. The resolve's
-        // occlusion cull would drop each such interval (an opaque interval over [0, 1] wholly
-        // nearer hides it), so the images are the same; it is off where the resolve sees every
-        // interval (a budget to compress to, the depth-order check, occlusion-cull=0) and in
-        // adaptive sampling's first pass, whose unseen-segment rule counts intervals.
+        // The early cull (exposure::EarlyCull): a sample an opaque triangle covers all the
+        // shutter from nearer than a later segment's nearest corner is not solved for it. It is
+        // off where the resolve sees every interval (a budget to compress to, the depth-order
+        // check, occlusion-cull=0), in adaptive sampling's first pass, whose unseen-segment rule
+        // counts intervals, and where no segment spans the shutter. The segments go nearest
+        // first, so that what hides others is mostly drawn before them; the resolve puts each
+        // sample's list back in the tile's order (sortRunsBySource), so the order changes
+        // nothing it sees.
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
-                                    !frame.options.checkDepthOrder && !frame.firstPass;
-        if (isCullingEarly) scratch.coveredFarthest.assign(numSamples, std::numeric_limits<float>::infinity());
+                                    !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->numSegments() == 1;
+        exposure::EarlyCull& earlyCull = scratch.earlyCull;
+        if (isCullingEarly) {
+            earlyCull.begin(numSamples, spp, tileWidth);
+            if (scratch.nearFirstOf.data() != items.data() || scratch.nearFirstOf.size() != items.size()) {
+                exposure::nearestFirst(items, segments, scratch.nearFirst);
+                scratch.nearFirstOf = items;
+            }
+            items = scratch.nearFirst;
+        }
+        scratch.sortRunsBySource = isCullingEarly;
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);
         for (std::size_t k = 0; k < items.size(); ++k) {
@@ -227,6 +240,11 @@ private:
             const raster::PixelBounds region{std::max(box.x0, rect.x0), std::max(box.y0, rect.y0), std::min(box.x1, rect.x1),
                                              std::min(box.y1, rect.y1)};
             if (region.empty()) continue;
+            const float nearest = isCullingEarly ? exposure::EarlyCull::nearestOf(segment.nearness) : -std::numeric_limits<float>::infinity();
+            if (isCullingEarly && earlyCull.isRegionHidden(region, rect.x0, rect.y0, nearest)) {
+                counters.samplesHidden += std::int64_t(region.x1 - region.x0 + 1) * (region.y1 - region.y0 + 1) * spp;
+                continue;
+            }
             const raster::MovingTriangle& moving = scratch.cache.get(*frame.segmented, index);
             if (frame.options.tileCull) {
                 ++counters.tileTests;
@@ -243,8 +261,6 @@ private:
             // edge quadratics and staysOutside answers in batches (EdgeBatch, SIMD), then the
             // exact spans of the samples not culled, as records, in the run's order.
             const int cullOrientation = frame.options.tileCull ? segment.orientation : 0;
-            // Below the nearest depth by more than the rounding of an interval's float depths.
-            const float nearest = isCullingEarly && segment.nearness > 0.0f ? (1.0f - 1e-5f) / segment.nearness : -std::numeric_limits<float>::infinity();
             const bool isOccluder = isCullingEarly && !scene.materials[tri.material].isTranslucent();
             auto visitRun = [&](std::uint32_t first, std::ptrdiff_t stride, int count) __attribute__((always_inline)) {
                 for (int done = 0; done < count; done += raster::EdgeBatch::kCapacity) {
@@ -257,7 +273,7 @@ private:
                             continue;
                         }
                         const auto sample = std::uint32_t(batchFirst + i * stride);
-                        if (isCullingEarly && scratch.coveredFarthest[sample] < nearest) {
+                        if (isCullingEarly && earlyCull.isHidden(sample, nearest)) {
                             ++counters.samplesHidden;
                             continue;
                         }
@@ -282,7 +298,7 @@ private:
                             r.interval.source = index;
                             scratch.records.push_back(r);
                             if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
-                                scratch.coveredFarthest[sample] = std::min(scratch.coveredFarthest[sample], std::max(r.interval.depth0, r.interval.depth1));
+                                earlyCull.cover(sample, std::max(r.interval.depth0, r.interval.depth1));
                         }
                     }
                 }
@@ -319,8 +335,15 @@ private:
             const double step = 2.0 / double(width);
             for (int py = region.y0; py <= region.y1; ++py) {
                 const auto rowFirst = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp);
+                // The row's pixels not wholly hidden from the segment, [open0, open1].
+                int open0 = region.x0, open1 = region.x1;
+                if (isCullingEarly) {
+                    earlyCull.openRow(py, rect.x0, rect.y0, nearest, open0, open1);
+                    counters.samplesHidden += std::int64_t(boxWidth - std::max(0, open1 - open0 + 1)) * spp;
+                    if (open0 > open1) continue;
+                }
                 if (!isRowSpan) {
-                    visitRun(rowFirst, 1, boxWidth * spp);
+                    visitRun(rowFirst + std::uint32_t((open0 - region.x0) * spp), 1, (open1 - open0 + 1) * spp);
                     continue;
                 }
                 for (int s = 0; s < spp; ++s) {
@@ -335,6 +358,7 @@ private:
                         pxLast = std::min(region.x1, region.x0 + int(std::floor(std::clamp((xHi + kRowMargin - first.x) / step, -limit, limit))));
                     }
                     counters.samplesCulled += boxWidth - std::max(0, pxLast - pxFirst + 1);
+                    pxFirst = std::max(pxFirst, open0), pxLast = std::min(pxLast, open1);
                     if (pxLast >= pxFirst) visitRun(rowFirst + std::uint32_t((pxFirst - region.x0) * spp + s), spp, pxLast - pxFirst + 1);
                 }
             }

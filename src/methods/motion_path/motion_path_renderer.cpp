@@ -1,5 +1,6 @@
 #include "methods/motion_path/motion_path_renderer.h"
 
+#include "exposure/early_cull.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_passes.h"
 #include "exposure/segmented_geometry.h"
@@ -24,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -49,6 +51,7 @@ struct Options {
     // interval per segment, as the paper does).
     bool mergeSegments = true;
     bool sortIntervals = true;
+    bool earlyCull = true;  ///< skip the samples where nearer opaque triangles hide a path all the shutter (renderRect)
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     exposure::PixelShadingOptions shading;
@@ -65,7 +68,8 @@ struct Fragment {
 // Counters of one thread, summed at the end.
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
-                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0, mergedIntervals = 0;
+                 intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0, mergedIntervals = 0,
+                 samplesHidden = 0;
     exposure::PixelShadingCounters shading;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
@@ -92,6 +96,9 @@ struct TileScratch {
     std::vector<float> events;
     std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
     std::vector<std::uint32_t> seenPaths;  ///< an adaptive first pass's paths with intervals in the tile (noteUnseenItems)
+    exposure::EarlyCull earlyCull;
+    std::vector<std::uint32_t> nearFirst;         ///< the tile's paths nearest first, for the early cull
+    std::span<const std::uint32_t> nearFirstOf;   ///< the items nearFirst orders (a tile's runs share them)
     std::vector<glm::vec3> color;
     std::vector<float> coverage;           ///< per sample
     exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
@@ -165,6 +172,7 @@ public:
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
             total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces, total.mergedIntervals += c.mergedIntervals;
+            total.samplesHidden += c.samplesHidden;
             total.shading.add(c.shading);
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
@@ -201,6 +209,7 @@ public:
         stats.setCounter("interval_splits", double(total.splits));
         stats.setCounter("sort_cycles", double(total.cycles));
         stats.setCounter("backface_intervals_culled", double(total.culledIntervals));
+        stats.setCounter("samples_hidden_before_solving", double(total.samplesHidden));
         exposure::recordPixelShadingStats(stats, total.shading, refinement ? refinement->numPixelRenders(numPixels) : numPixels, m_options.shading);
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
@@ -298,6 +307,22 @@ private:
             if (scratch.weights[k] > 0.0f) add(scratch.sorted[k], scratch.weights[k], scratch.sorted[k].t0, scratch.sorted[k].t1);
     }
 
+    // The interval of a path's span [t0, t1] at the sample at ndc (its times and the depths at
+    // its ends); false where the span is not seen (an end behind the eye, or the triangle facing
+    // away and single-sided).
+    static bool intervalOf(const exposure::TriangleSegment& path, const raster::MovingTriangle& moving, const FlatTriangle& tri,
+                           const glm::dvec2& ndc, float t0, float t1, Interval& interval) {
+        const double u0 = path.localTime(t0), u1 = path.localTime(t1);
+        const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
+        // The triangle cannot turn over inside a span (its edges would have to pass the sample),
+        // so its facing at mid-span is its facing throughout.
+        const bool isFrontFacing = moving.isFrontFacing(0.5 * (u0 + u1));
+        if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !isFrontFacing)) return false;
+        interval.t0 = t0, interval.t1 = t1;
+        interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
+        return true;
+    }
+
     // Builds the intervals of one sample from its fragments (sorted by path), appending them to
     // `out`. Depth and facing are all the resolve needs; opaque intervals are shaded later, and
     // only if visible. Translucent ones are shaded now, since their opacity (texture alpha)
@@ -315,18 +340,11 @@ private:
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
                 const float t0 = scratch.events[e], t1 = scratch.events[e + 1];
                 if (!window.isIdentity() && !(window.measure(t0, t1) > 0.0f)) continue;
-                const double u0 = path.localTime(t0), u1 = path.localTime(t1);
-                const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
-                // The triangle cannot turn over inside a span (its edges would have to pass the
-                // sample), so its facing at mid-span is its facing throughout.
-                const bool isFrontFacing = moving.isFrontFacing(0.5 * (u0 + u1));
-                if (!s0.isValid || !s1.isValid || (!tri.isDoubleSided && !isFrontFacing)) {
+                Interval interval;
+                if (!intervalOf(path, moving, tri, ndc, t0, t1, interval)) {
                     ++scratch.counters.culledIntervals;
                     continue;
                 }
-                Interval interval;
-                interval.t0 = t0, interval.t1 = t1;
-                interval.depth0 = float(s0.viewDepth), interval.depth1 = float(s1.viewDepth);
                 interval.source = fragments[i].path;
                 if (material.isTranslucent()) {
                     const ShadedColor shaded = frame.shade(path.triangle, t0, t1, exposure::sampleSite(ndc, frame.settings.aa), window, scratch.movingTriangles);
@@ -387,6 +405,19 @@ private:
         return true;
     }
 
+    // Marks `sample` of rect (EarlyCull) where the still path covers it all the shutter: its
+    // exact spans there are [0, 1] and seen, and the build will make that interval.
+    static void coverByStillPath(const Frame& frame, const exposure::TriangleSegment& path, const raster::MovingTriangle& moving,
+                                 const FlatTriangle& tri, const raster::PixelBounds& rect, std::uint32_t sample, TileScratch& scratch) {
+        const glm::dvec2 ndc = sampleNdc(frame, rect, sample);
+        scratch.events.clear();
+        frame.exactSpans(path, moving, ndc, scratch.events);
+        Interval interval;
+        if (scratch.events.size() == 2 && scratch.events[0] == 0.0f && scratch.events[1] == 1.0f &&
+            intervalOf(path, moving, tri, ndc, 0.0f, 1.0f, interval))
+            scratch.earlyCull.cover(sample, std::max(interval.depth0, interval.depth1));
+    }
+
     // The pixels of rect, within a tile whose paths are `items`; false, with the image left
     // alone, once its fragments pass shareFragments (a single pixel cuts them instead).
     bool renderRect(const Frame& frame, std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel,
@@ -402,6 +433,24 @@ private:
         // it covers.
         auto start = Clock::now();
         scratch.fragments.clear();
+        // The early cull (exposure::EarlyCull): paths go nearest first, a still opaque path that
+        // covers a sample all the shutter marks it, and a later path's fragment there is dropped
+        // where the mark lies nearer than the path's nearest corner (as are the paths whose every
+        // pixel is so covered): the resolve would give its intervals no share. The build puts
+        // each sample's fragments in path order again (uniquePaths), so the order changes
+        // nothing after. It is off in adaptive sampling's first pass (its unseen-path rule counts
+        // intervals), without exact opaque weights or the sort, and where no path spans the shutter.
+        const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
+                                    frame.segmented.numSegments() == 1;
+        exposure::EarlyCull& earlyCull = scratch.earlyCull;
+        if (isCullingEarly) {
+            earlyCull.begin(numSamples, spp, tileWidth);
+            if (scratch.nearFirstOf.data() != items.data() || scratch.nearFirstOf.size() != items.size()) {
+                exposure::nearestFirst(items, frame.paths, scratch.nearFirst);
+                scratch.nearFirstOf = items;
+            }
+            items = scratch.nearFirst;
+        }
         for (std::size_t k = 0; k < items.size(); ++k) {
             if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, k, items.size())) {
                 counters.rasterSeconds += secondsSince(start);
@@ -417,6 +466,19 @@ private:
                                            std::min(box.y1, rect.y1)};
             if (scan.empty()) continue;
             const exposure::TriangleSegment& segment = frame.paths[index];
+            const float nearest = isCullingEarly ? exposure::EarlyCull::nearestOf(segment.nearness) : -std::numeric_limits<float>::infinity();
+            if (isCullingEarly && earlyCull.isRegionHidden(scan, rect.x0, rect.y0, nearest)) {
+                counters.samplesHidden += std::int64_t(scan.x1 - scan.x0 + 1) * (scan.y1 - scan.y0 + 1) * spp;
+                continue;
+            }
+            // A still opaque path marks the samples it covers all the shutter, as the build
+            // would find its interval there.
+            const FlatTriangle& tri = frame.geometry.triangles()[segment.triangle];
+            const raster::MovingTriangle* still = nullptr;
+            if (isCullingEarly && !frame.scene.materials[tri.material].isTranslucent()) {
+                const raster::MovingTriangle& moving = scratch.movingTriangles.get(frame.segmented, index);
+                if (moving.isStill()) still = &moving;
+            }
             motion_path::buildMotionPath(segment.clip0, segment.clip1, scratch.path);
             counters.pathFaces += scratch.path.count;
             for (int f = 0; f < scratch.path.count; ++f) {
@@ -429,7 +491,12 @@ private:
                     raster::makeConservative(face, frame.viewport);
                     raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
                         const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                        if (isCullingEarly && earlyCull.isHidden(sample, nearest)) {
+                            ++counters.samplesHidden;
+                            return;
+                        }
                         scratch.fragments.push_back({sample, index, segment.nearness});
+                        if (still) coverByStillPath(frame, segment, *still, tri, rect, sample, scratch);
                     });
                 }
             }
@@ -653,6 +720,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     if (o.maskBits != 32 && o.maskBits != 64 && o.maskBits != 128 && o.maskBits != 256)
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
+    o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.spanShading = exposure::spanShadingSettings(options, "motion-path");
     o.shading = exposure::pixelShadingOptions(options, "motion-path");

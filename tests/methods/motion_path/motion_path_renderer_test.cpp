@@ -135,7 +135,7 @@ TEST(MotionPathRenderer, MultiKeyAndCameraMotionAgreeWithTheReference) {
 TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
     // Ten static quads stacked in depth over every pixel: with a budget of 4 paths per sample
     // every sample overflows, the nearest are kept (the front quad's colour wins) and the
-    // overflow is counted.
+    // overflow is counted (without the early cull, which would drop the hidden quads first).
     Scene scene = test::emptyScene();
     for (int i = 0; i < 10; ++i) {
         const test::PixelCamera cam{8, 8, 2.0f + float(i)};
@@ -146,6 +146,7 @@ TEST(MotionPathRenderer, BudgetsAreBoundedAndCounted) {
     OptionMap options;
     options.set("max-fragments", "4");
     options.set("max-intervals", "3");
+    options.set("early-cull", "0");
     const Image image = render("motion-path", scene, 8, 8, options, &stats);
     EXPECT_FLOAT_EQ(image.at(4, 4).x, 0.0f);
     EXPECT_EQ(stats.counter("fragment_overflow_samples"), 64.0);

@@ -1,0 +1,87 @@
+#pragma once
+
+#include "exposure/segmented_geometry.h"
+#include "raster/tile_grid.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace streak::exposure {
+
+// The early cull of an exact method's tile: what its samples are known to be hidden behind
+// before the segments reaching them are solved. A sample that an opaque triangle covers over the
+// whole shutter keeps the farthest depth of that triangle there (the nearest such), and a
+// segment whose nearest corner lies beyond it has no share there: the resolve's occlusion cull
+// (cullHiddenIntervals) would drop each of its intervals, an opaque interval over [0, 1] wholly
+// nearer hiding it. So a method may skip such a sample, and a pixel whose every sample is so
+// covered, without changing any image. It pays where segments come nearest first
+// (nearestFirst), and only where a segment can cover the whole shutter (one segment a triangle).
+//
+// Samples are a tile's (or a piece of it), pixel-major with the pattern's samples minor, as
+// TileRecord::sample counts them.
+class EarlyCull {
+public:
+    // Every sample of a rectangle `tileWidth` pixels wide, `spp` samples a pixel, uncovered.
+    void begin(std::size_t numSamples, int spp, int tileWidth) {
+        m_spp = spp, m_tileWidth = tileWidth;
+        m_farthest.assign(numSamples, std::numeric_limits<float>::infinity());
+        m_pixelFarthest.assign(numSamples / std::size_t(spp), std::numeric_limits<float>::infinity());
+    }
+
+    // The depth a segment of `nearness` (1 / its nearest corner's view depth; 0: unknown, never
+    // culled) cannot come nearer than: below its nearest by more than the rounding of an
+    // interval's float depths.
+    static float nearestOf(float nearness) {
+        return nearness > 0.0f ? (1.0f - 1e-5f) / nearness : -std::numeric_limits<float>::infinity();
+    }
+
+    bool isHidden(std::uint32_t sample, float nearest) const { return m_farthest[sample] < nearest; }
+    // Pixel (x, y) of the rectangle, counted from its corner.
+    bool isPixelHidden(int x, int y, float nearest) const {
+        return m_pixelFarthest[std::size_t(y) * std::size_t(m_tileWidth) + std::size_t(x)] < nearest;
+    }
+    // True when every pixel of `region` (pixels, within the rectangle whose corner is `origin`)
+    // is hidden from a segment whose nearest is `nearest`.
+    bool isRegionHidden(const raster::PixelBounds& region, int originX, int originY, float nearest) const {
+        for (int py = region.y0; py <= region.y1; ++py)
+            for (int px = region.x0; px <= region.x1; ++px)
+                if (!isPixelHidden(px - originX, py - originY, nearest)) return false;
+        return true;
+    }
+    // Narrows [x0, x1] (pixels of row py, within the rectangle whose corner is `origin`) to the
+    // pixels not hidden from the segment; x0 > x1 where none is left.
+    void openRow(int py, int originX, int originY, float nearest, int& x0, int& x1) const {
+        while (x0 <= x1 && isPixelHidden(x0 - originX, py - originY, nearest)) ++x0;
+        while (x1 >= x0 && isPixelHidden(x1 - originX, py - originY, nearest)) --x1;
+    }
+
+    // An opaque interval covers `sample` over the whole shutter, no farther than `farthest`.
+    void cover(std::uint32_t sample, float farthest) {
+        float& covered = m_farthest[sample];
+        if (!(farthest < covered)) return;
+        covered = farthest;
+        const std::size_t pixel = sample / std::uint32_t(m_spp);
+        const float* first = m_farthest.data() + pixel * std::size_t(m_spp);
+        m_pixelFarthest[pixel] = *std::max_element(first, first + m_spp);
+    }
+
+private:
+    int m_spp = 1, m_tileWidth = 1;
+    std::vector<float> m_farthest;       ///< per sample
+    std::vector<float> m_pixelFarthest;  ///< per pixel: the farthest of its samples'
+};
+
+// A tile's segments `items` in `out`, nearest first (by their nearest corner; at equal
+// nearness in their order), so that what hides others is mostly drawn before them.
+inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, std::vector<std::uint32_t>& out) {
+    out.assign(items.begin(), items.end());
+    std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return segments[a].nearness != segments[b].nearness ? segments[a].nearness > segments[b].nearness : a < b;
+    });
+}
+
+}  // namespace streak::exposure
