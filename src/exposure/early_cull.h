@@ -12,6 +12,15 @@
 
 namespace streak::exposure {
 
+// A tile's segments `items` in `out`, nearest first (by their nearest corner; at equal
+// nearness in their order), so that what hides others is mostly drawn before them.
+inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, std::vector<std::uint32_t>& out) {
+    out.assign(items.begin(), items.end());
+    std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return segments[a].nearness != segments[b].nearness ? segments[a].nearness > segments[b].nearness : a < b;
+    });
+}
+
 // The early cull of an exact method's tile: what its samples are known to be hidden behind
 // before the segments reaching them are solved. A sample that an opaque triangle covers over the
 // whole shutter keeps the farthest depth of that triangle there (the nearest such), and a
@@ -26,10 +35,19 @@ namespace streak::exposure {
 class EarlyCull {
 public:
     // Every sample of a rectangle `tileWidth` pixels wide, `spp` samples a pixel, uncovered.
-    void begin(std::size_t numSamples, int spp, int tileWidth) {
+    // Returns the tile's segments `items` nearest first (nearestFirst), the order to visit them
+    // in; the pieces of one tile (its runs, its budget's halves) share the items, so it is
+    // ordered once for them all.
+    std::span<const std::uint32_t> begin(std::size_t numSamples, int spp, int tileWidth, std::span<const std::uint32_t> items,
+                                         std::span<const TriangleSegment> segments) {
         m_spp = spp, m_tileWidth = tileWidth;
         m_farthest.assign(numSamples, std::numeric_limits<float>::infinity());
         m_pixelFarthest.assign(numSamples / std::size_t(spp), std::numeric_limits<float>::infinity());
+        if (m_orderOf.data() != items.data() || m_orderOf.size() != items.size()) {
+            nearestFirst(items, segments, m_order);
+            m_orderOf = items;
+        }
+        return m_order;
     }
 
     // The depth a segment of `nearness` (1 / its nearest corner's view depth; 0: unknown, never
@@ -73,15 +91,9 @@ private:
     int m_spp = 1, m_tileWidth = 1;
     std::vector<float> m_farthest;       ///< per sample
     std::vector<float> m_pixelFarthest;  ///< per pixel: the farthest of its samples'
+    std::vector<std::uint32_t> m_order;       ///< m_orderOf nearest first
+    std::span<const std::uint32_t> m_orderOf;  ///< the items m_order orders
 };
 
-// A tile's segments `items` in `out`, nearest first (by their nearest corner; at equal
-// nearness in their order), so that what hides others is mostly drawn before them.
-inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, std::vector<std::uint32_t>& out) {
-    out.assign(items.begin(), items.end());
-    std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return segments[a].nearness != segments[b].nearness ? segments[a].nearness > segments[b].nearness : a < b;
-    });
-}
 
 }  // namespace streak::exposure

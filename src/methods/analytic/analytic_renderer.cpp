@@ -61,8 +61,6 @@ struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, C
     raster::SweptHull hull;
     raster::SweptPieces pieces;  // where a segment has no hull (it turns over)
     exposure::EarlyCull earlyCull;
-    std::vector<std::uint32_t> nearFirst;  ///< the tile's segments nearest first, for the early cull
-    std::span<const std::uint32_t> nearFirstOf;  ///< the items nearFirst orders (a tile's runs share them)
 };
 
 class AnalyticRenderer final : public Renderer {
@@ -221,14 +219,7 @@ private:
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
                                     !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->numSegments() == 1;
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
-        if (isCullingEarly) {
-            earlyCull.begin(numSamples, spp, tileWidth);
-            if (scratch.nearFirstOf.data() != items.data() || scratch.nearFirstOf.size() != items.size()) {
-                exposure::nearestFirst(items, segments, scratch.nearFirst);
-                scratch.nearFirstOf = items;
-            }
-            items = scratch.nearFirst;
-        }
+        if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, segments);
         scratch.sortRunsBySource = isCullingEarly;
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
         const glm::dvec2 tileHi = raster::ndcFromRaster(rect.x1 + 1, rect.y0, width, height);

@@ -97,8 +97,6 @@ struct TileScratch {
     std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
     std::vector<std::uint32_t> seenPaths;  ///< an adaptive first pass's paths with intervals in the tile (noteUnseenItems)
     exposure::EarlyCull earlyCull;
-    std::vector<std::uint32_t> nearFirst;         ///< the tile's paths nearest first, for the early cull
-    std::span<const std::uint32_t> nearFirstOf;   ///< the items nearFirst orders (a tile's runs share them)
     std::vector<glm::vec3> color;
     std::vector<float> coverage;           ///< per sample
     exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
@@ -443,14 +441,7 @@ private:
         const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
                                     frame.segmented.numSegments() == 1;
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
-        if (isCullingEarly) {
-            earlyCull.begin(numSamples, spp, tileWidth);
-            if (scratch.nearFirstOf.data() != items.data() || scratch.nearFirstOf.size() != items.size()) {
-                exposure::nearestFirst(items, frame.paths, scratch.nearFirst);
-                scratch.nearFirstOf = items;
-            }
-            items = scratch.nearFirst;
-        }
+        if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, frame.paths);
         for (std::size_t k = 0; k < items.size(); ++k) {
             if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, k, items.size())) {
                 counters.rasterSeconds += secondsSince(start);
