@@ -69,6 +69,117 @@ vec4 sampleFootprint(int index, vec2 uv, vec2 duvdx, vec2 duvdy, float minLod) {
     return sampleSweptFootprint(index, uv, duvdx, duvdy, vec2(0.0), minLod, 16, 1.0);
 }
 
+int textureLevelsOf(int index) {
+    int levels = 1;
+    for (int i = 0; i < MAX_TEXTURES; ++i)
+        if (i == index) levels = textureQueryLevels(u_textures[i]);
+    return levels;
+}
+
+// UvTriangleTest (texture.cpp): whether a tap lies inside a uv triangle, by its barycentrics;
+// everything is inside when the triangle is degenerate in uv.
+struct UvTriangle {
+    bool isActive;
+    dvec2 origin, edge1, edge2, row1, row2;
+};
+
+UvTriangle uvTriangle(bool isClipped, vec2 corners[3]) {
+    UvTriangle t;
+    t.isActive = false;
+    if (!isClipped) return t;
+    t.origin = dvec2(corners[0]);
+    t.edge1 = dvec2(corners[1]) - t.origin;
+    t.edge2 = dvec2(corners[2]) - t.origin;
+    double det = t.edge1.x * t.edge2.y - t.edge1.y * t.edge2.x;
+    if (det == 0.0 || isinf(det) || isnan(det)) return t;
+    t.row1 = dvec2(t.edge2.y, -t.edge2.x) / det;
+    t.row2 = dvec2(-t.edge1.y, t.edge1.x) / det;
+    t.isActive = true;
+    return t;
+}
+
+dvec3 uvBarycentrics(UvTriangle t, vec2 uv) {
+    dvec2 d = dvec2(uv) - t.origin;
+    double b1 = dot(t.row1, d), b2 = dot(t.row2, d);
+    return dvec3(1.0 - b1 - b2, b1, b2);
+}
+
+bool isInsideUv(UvTriangle t, vec2 uv) {
+    if (!t.isActive) return true;
+    dvec3 b = uvBarycentrics(t, uv);
+    const double kEdge = -1e-6;  // a tap on an edge belongs to both triangles
+    return b.x >= kEdge && b.y >= kEdge && b.z >= kEdge;
+}
+
+vec2 heldUv(UvTriangle t, vec2 uv) {
+    if (!t.isActive) return uv;
+    dvec3 b = uvBarycentrics(t, uv);
+    if (!(b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0)) {
+        dvec3 c = max(b, dvec3(0.0));
+        double sum = c.x + c.y + c.z;
+        b = sum > 0.0 ? c / sum : dvec3(1.0 / 3.0);
+    }
+    return vec2(t.origin + b.y * t.edge1 + b.z * t.edge2);
+}
+
+// Texture::sampleBox: the mean of bilinear taps over the parallelogram duvdx x duvdy around uv,
+// one per texel of the finest level where both axes take at most kMaxBoxTaps in all; with
+// isClipped only the taps inside the uv triangle `corners` count, and `inside` gets their share.
+const int kMaxBoxTaps = 64;
+vec4 sampleBox(int index, vec2 uv, vec2 duvdx, vec2 duvdy, bool isClipped, vec2 corners[3], out float inside) {
+    // One exit, and no break or continue: llvmpipe loses later work of an invocation that left
+    // such loops or returned early here.
+    inside = 1.0;
+    vec4 result = vec4(0.0);
+    vec2 size = textureSizeOf(index);
+    float lengthX = length(duvdx * size), lengthY = length(duvdy * size);
+    int maxLevel = textureLevelsOf(index) - 1;
+    bool isUsable = !(isnan(uv.x) || isnan(uv.y));
+    bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY));
+    if (isUsable && !isFinite) result = sampleTexture(index, uv, float(maxLevel));
+    if (isUsable && isFinite) {
+        int level = 0, tapsX = 1, tapsY = 1;
+        bool isFound = false;
+        for (int l = 0; l <= maxLevel; ++l) {
+            float spacing = exp2(float(l));
+            int x = max(1, int(ceil(lengthX / spacing - 1e-3))), y = max(1, int(ceil(lengthY / spacing - 1e-3)));
+            if (!isFound) {
+                level = l;
+                tapsX = x;
+                tapsY = y;
+                isFound = x * y <= kMaxBoxTaps;
+            }
+        }
+        tapsX = min(tapsX, kMaxBoxTaps);
+        tapsY = min(tapsY, kMaxBoxTaps / tapsX);
+        float lod = float(level);
+        UvTriangle clip = uvTriangle(isClipped, corners);
+        if (tapsX * tapsY == 1) {
+            // One tap: the centre, held to the triangle when it falls outside, all or nothing.
+            bool isCentreInside = isInsideUv(clip, uv);
+            inside = isCentreInside ? 1.0 : 0.0;
+            result = sampleTexture(index, isCentreInside ? uv : heldUv(clip, uv), lod);
+        } else {
+            vec2 stepX = duvdx / float(tapsX), stepY = duvdy / float(tapsY);
+            vec2 origin = uv - 0.5 * (duvdx + duvdy) + 0.5 * (stepX + stepY);
+            vec4 sum = vec4(0.0);
+            int used = 0;
+            for (int j = 0; j < tapsY; ++j)
+                for (int i = 0; i < tapsX; ++i) {
+                    vec2 tap = origin + stepX * float(i) + stepY * float(j);
+                    if (isInsideUv(clip, tap)) {
+                        sum += sampleTexture(index, tap, lod);
+                        ++used;
+                    }
+                }
+            inside = float(used) / float(tapsX * tapsY);
+            // No tap inside (a triangle smaller than their spacing): the centre, held to it.
+            result = used > 0 ? sum / float(used) : sampleTexture(index, heldUv(clip, uv), lod);
+        }
+    }
+    return result;
+}
+
 // Texture::finestLodOfFootprint: the level of the anisotropic taps.
 float finestLodOfFootprint(int index, vec2 duvdx, vec2 duvdy) {
     vec2 size = textureSizeOf(index);

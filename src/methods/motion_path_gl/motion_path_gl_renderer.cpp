@@ -1,5 +1,6 @@
 #include "methods/motion_path_gl/motion_path_gl_renderer.h"
 
+#include "exposure/pixel_shading.h"
 #include "exposure/sample_passes.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/span_shading.h"
@@ -28,6 +29,7 @@ struct Options {
     int maskBits = 128;
     bool exactWeights = true;  ///< opaque pieces measured in time (motion-path's default), not in mask slices
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter (the shaders' uniforms)
+    exposure::PixelShadingOptions shading;      ///< shading=pixel|sample, shading-cells, shading-filter (exposure/pixel_shading.h)
     bool sortIntervals = true;
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     int gpuMemoryMb = 1024;
@@ -39,7 +41,25 @@ constexpr std::size_t kInitialNodesPerSample = 4;
 // The resolve pass's counters (ResolveCounterBuffer).
 struct ResolveCounters {
     std::uint32_t intervalOverflowSamples, splits, cycles, shadedSpans, intervals, maxIntervals, shownOverflowSamples;
+    std::uint32_t piecesWritten, pieceOverflowSamples;
 };
+
+// The pixel pass's counters (PixelShadingCounterBuffer).
+struct PixelShadingCounters {
+    std::uint32_t pixels, pieces, clusters, visibleTriangles, overflowPixels, maxClusters;
+};
+// The clusters of a pixel one dispatch of the pixel pass shades (see its shader: llvmpipe's limit
+// on an invocation's loop iterations).
+constexpr int kClustersPerDispatch = 8;
+
+// At shading=pixel the resolve leaves each sample's visible opaque pieces in a pool for the pixel
+// pass: a run (first, count) a sample and kPieceBytes a piece (PieceNode, std430). The pool takes
+// up to kPiecesPerSample a sample, within a quarter of the GPU memory budget; a sample it cannot
+// hold shades its own pieces (piece_overflow_samples).
+constexpr std::size_t kPieceBytes = 16, kSampleRunBytes = 8, kPiecesPerSample = 4;
+// The most pieces the pixel pass sorts and clusters in one pixel (its local arrays); past them a
+// piece is shaded at its sample (piece_overflow_pixels).
+int maxPixelPieces(int aa) { return std::clamp(8 * aa * aa, 64, 512); }
 
 // What shows in a sample, for the passes (the resolve's ShownRecord, std430): kMaxShown a sample.
 struct ShownRecord {
@@ -123,6 +143,37 @@ public:
         glClearNamedBufferData(shownBuffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
         setInt(resolve.id(), "u_writeSurfaces", writesSurfaces ? 1 : 0);
 
+        // The piece pool of shading=pixel, and the pass that shades a pixel's samples together.
+        const std::size_t budgetBytes = std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20);
+        const bool perPixel = m_options.shading.rate == exposure::ShadingRate::Pixel &&
+                              grid.numSamples() * kSampleRunBytes + shownBytes < budgetBytes / 4;
+        const std::size_t pieceCapacity =
+            perPixel ? std::min(grid.numSamples() * kPiecesPerSample, (budgetBytes / 4 - shownBytes - grid.numSamples() * kSampleRunBytes) / kPieceBytes) : 0;
+        const gpu::GlBuffer pieceBuffer(std::max<std::size_t>(pieceCapacity * kPieceBytes, 16));
+        const gpu::GlBuffer sampleRuns(perPixel ? grid.numSamples() * kSampleRunBytes : 16);
+        const std::uint32_t zeroRun = 0;
+        glClearNamedBufferData(sampleRuns.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zeroRun);
+        setInt(resolve.id(), "u_shadingPerPixel", perPixel ? 1 : 0);
+        glProgramUniform1ui(resolve.id(), glGetUniformLocation(resolve.id(), "u_pieceCapacity"), GLuint(pieceCapacity));
+        const int cells = m_options.shading.cellsFor(grid.aa);
+        const gpu::GlProgram* pixelShading = nullptr;
+        if (perPixel) {
+            std::map<std::string, std::string> pixelDefines = defines;
+            pixelDefines["MAX_PIXEL_PIECES"] = std::to_string(maxPixelPieces(grid.aa));
+            pixelDefines["MAX_PIXEL_SAMPLES"] = std::to_string(grid.aa * grid.aa);
+            pixelShading = &gpu::buildProgram({{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "moving_triangle.glsl", "span_shading.glsl",
+                                                                     "motion_path_gl_pixel_shading.comp.glsl"}}},
+                                              pixelDefines);
+            const GLuint id = pixelShading->id();
+            setInt(id, "u_numSegments", numSegments);
+            setInt(id, "u_textureSamples", m_options.spanShading.maxTextureTaps);
+            glProgramUniform1f(id, glGetUniformLocation(id, "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
+            setInt(id, "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
+            setInt(id, "u_shadingCells", cells);
+            setInt(id, "u_boxFilter", m_options.shading.boxFilter ? 1 : 0);
+            setInt(id, "u_writeSurfaces", writesSurfaces ? 1 : 0);
+        }
+
         const gpu::GlVertexArray vertexArray;  // empty: vertices are pulled from storage buffers
         const gpu::GlFramebuffer framebuffer;  // no attachments: pass 1 writes only its lists
         glNamedFramebufferParameteri(framebuffer.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, grid.samplesWide());
@@ -132,7 +183,8 @@ public:
 
         // Pass 1, again with a larger buffer while it overflows (see the header).
         // The lists get what the passes' records leave of the GPU memory budget.
-        const std::size_t capNodes = std::max<std::size_t>(1, (std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20) - shownBytes) / kNodeBytes);
+        const std::size_t usedBytes = shownBytes + (perPixel ? grid.numSamples() * kSampleRunBytes + pieceCapacity * kPieceBytes : 0);
+        const std::size_t capNodes = std::max<std::size_t>(1, (budgetBytes - std::min(budgetBytes, usedBytes)) / kNodeBytes);
         std::size_t capacity = std::min(capNodes, std::max<std::size_t>(1024, grid.numSamples() * kInitialNodesPerSample));
         std::uint32_t sampleBudget = std::uint32_t(m_options.maxFragments);
         std::optional<gpu::FragmentLists> lists;
@@ -178,13 +230,40 @@ public:
             lists->bind(resolve.id(), 7, sampleBudget);
             resolveCounters.bindStorage(9);
             shownBuffer.bindStorage(10);
+            pieceBuffer.bindStorage(11);
+            sampleRuns.bindStorage(12);
             glBindImageTexture(2, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
             timer.begin("resolve");
             glDispatchCompute(GLuint((grid.samplesWide() + 7) / 8), GLuint((grid.samplesHigh() + 7) / 8), 1);
             timer.end();
+            m_pixelCounters = {};
+            m_pixelDispatches = 1;
+            const gpu::GlBuffer pixelCounters(sizeof m_pixelCounters, &m_pixelCounters);
+            if (pixelShading) {
+                glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+                glUseProgram(pixelShading->id());
+                buffers->bind(pixelShading->id());
+                pieceBuffer.bindStorage(11);
+                sampleRuns.bindStorage(12);
+                shownBuffer.bindStorage(10);
+                pixelCounters.bindStorage(13);
+                glBindImageTexture(2, output.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+                setInt(pixelShading->id(), "u_clusterCount", kClustersPerDispatch);
+                timer.begin("pixel shading");
+                for (int first = 0;; first += kClustersPerDispatch) {
+                    setInt(pixelShading->id(), "u_firstCluster", first);
+                    glDispatchCompute(GLuint((grid.width + 7) / 8), GLuint((grid.height + 7) / 8), 1);
+                    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+                    if (first == 0) pixelCounters.download(&m_pixelCounters, sizeof m_pixelCounters);
+                    if (first + kClustersPerDispatch >= int(m_pixelCounters.maxClusters)) break;
+                    ++m_pixelDispatches;
+                }
+                timer.end();
+            }
             glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
             glFinish();
             resolveCounters.download(&m_counters, sizeof m_counters);
+            if (pixelShading) pixelCounters.download(&m_pixelCounters, sizeof m_pixelCounters);
         }
         gpu::checkGlError("rendering motion-path-gl");
         timer.report(context.stats);
@@ -218,7 +297,22 @@ public:
         stats.setCounter("interval_overflow_samples", double(m_counters.intervalOverflowSamples));
         stats.setCounter("interval_splits", double(m_counters.splits));
         stats.setCounter("sort_cycles", double(m_counters.cycles));
-        stats.setCounter("shaded_spans", double(m_counters.shadedSpans));
+        if (perPixel) {
+            // The spans shaded: the pixel pass's clusters and what samples shaded alone on overflow.
+            exposure::PixelShadingCounters shaded;
+            shaded.pixels = m_pixelCounters.pixels;
+            shaded.pieces = m_pixelCounters.pieces;
+            shaded.shadedSpans = std::int64_t(m_pixelCounters.clusters) + m_counters.shadedSpans;
+            shaded.visibleTriangles = m_pixelCounters.visibleTriangles;
+            exposure::recordPixelShadingStats(stats, shaded, double(grid.width) * grid.height, m_options.shading);
+            stats.setCounter("piece_capacity", double(pieceCapacity));
+            stats.setCounter("piece_overflow_samples", double(m_counters.pieceOverflowSamples));
+            stats.setCounter("piece_overflow_pixels", double(m_pixelCounters.overflowPixels));
+            stats.setCounter("pixel_shading_dispatches", m_pixelDispatches);
+        } else {
+            stats.setCounter("shading_per_pixel", 0);
+            stats.setCounter("shaded_spans", double(m_counters.shadedSpans));
+        }
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);
@@ -235,6 +329,8 @@ public:
 private:
     Options m_options;
     ResolveCounters m_counters{};
+    PixelShadingCounters m_pixelCounters{};
+    int m_pixelDispatches = 0;
 };
 
 }  // namespace
@@ -248,6 +344,7 @@ std::unique_ptr<Renderer> createMotionPathGlRenderer(OptionMap& options) {
         throw Error("method 'motion-path-gl': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.exactWeights = options.getInt("exact-weights", 1, 0, 1) != 0;
     o.spanShading = exposure::spanShadingSettings(options, "motion-path-gl");
+    o.shading = exposure::pixelShadingOptions(options, "motion-path-gl");
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.gpuMemoryMb = options.getInt("gpu-memory", 1024, 1, 1 << 20);

@@ -232,6 +232,62 @@ TEST(MotionPathGl, EachTextureFilterMatchesTheCpus) {
     }
 }
 
+// shading=pixel on the GPU (motion_path_gl_pixel_shading): the pixel's pieces gathered, sorted,
+// cut into the same time clusters and shaded once each as exposure::PixelShading does, so the
+// images agree to float rounding and so do the shadings and the distinct triangles counted. On
+// textured scenes at --aa 4 in 2 x 2 cells (box and lookup filters) and at the default cells,
+// whose clusters of one piece shade as their sample does; rotating-cube's pixels take more
+// clusters than one dispatch shades (kClustersPerDispatch), so the later dispatches are tested.
+TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
+    for (const char* name : {"rotating-cube", "twist", "translucent"}) {
+        const Scene scene = builtin(name);
+        for (const char* cells : {"2", "4"})
+            for (const char* filter : {"box", "lookup"}) {
+                if (std::string(cells) == "4" && std::string(filter) == "lookup") continue;
+                OptionMap options = test::withOption("shading", "pixel");
+                options.set("shading-cells", cells);
+                options.set("shading-filter", filter);
+                RenderStats gpuStats, cpuStats;
+                const Image gl = test::render("motion-path-gl", scene, 48, 36, options, &gpuStats, ShadingMode::Phong, 4);
+                const Image cpu = test::render("motion-path", scene, 48, 36, options, &cpuStats, ShadingMode::Phong, 4);
+                const std::string what = std::string(name) + " cells " + cells + " " + filter;
+                std::printf("%s: gl vs cpu %.1f dB, %g dispatches\n", what.c_str(), psnr(gl, cpu), gpuStats.counter("pixel_shading_dispatches"));
+                EXPECT_GE(psnr(gl, cpu), 80.0) << what;
+                ASSERT_GT(cpuStats.counter("visible_pieces"), 0.0) << what;
+                if (std::string(cells) == "2") EXPECT_LT(cpuStats.counter("shaded_spans"), cpuStats.counter("visible_pieces")) << what;  // shared
+                for (const char* counter : {"visible_pieces", "shaded_spans", "visible_triangles_per_pixel"})
+                    EXPECT_NEAR(gpuStats.counter(counter), cpuStats.counter(counter), 1e-3 * cpuStats.counter(counter)) << counter << " " << what;
+                EXPECT_EQ(gpuStats.counter("piece_overflow_samples"), 0.0) << what;
+                EXPECT_EQ(gpuStats.counter("piece_overflow_pixels"), 0.0) << what;
+                if (std::string(name) == "rotating-cube") EXPECT_GT(gpuStats.counter("pixel_shading_dispatches"), 1.0) << what;
+            }
+    }
+    // The option reaches the shaders: on a textured scene the shared shading is not per-sample's.
+    const Scene cube = builtin("rotating-cube");
+    OptionMap pixel = test::withOption("shading", "pixel");
+    pixel.set("shading-cells", "2");
+    const Image perPixel = test::render("motion-path-gl", cube, 48, 36, pixel, nullptr, ShadingMode::Phong, 4);
+    const Image perSample = test::render("motion-path-gl", cube, 48, 36, OptionMap(), nullptr, ShadingMode::Phong, 4);
+    EXPECT_LT(psnr(perPixel, perSample), 70.0);
+}
+
+// A piece pool too small for the frame (--gpu-memory 1): the samples it cannot hold shade their
+// own pieces, as shading=sample does, and are counted; the image stays close to the CPU's.
+TEST(MotionPathGl, ShadingPerPixelPastThePoolShadesPerSampleAndCounts) {
+    const Scene scene = builtin("rotating-cube");
+    OptionMap options = test::withOption("shading", "pixel");
+    options.set("shading-cells", "2");
+    OptionMap small = options;
+    small.set("gpu-memory", "1");
+    RenderStats stats;
+    const Image gl = test::render("motion-path-gl", scene, 48, 36, small, &stats, ShadingMode::Phong, 4);
+    const Image cpu = test::render("motion-path", scene, 48, 36, options, nullptr, ShadingMode::Phong, 4);
+    EXPECT_GT(stats.counter("piece_overflow_samples"), 0.0);
+    EXPECT_GT(stats.counter("piece_capacity"), 0.0);
+    std::printf("past the pool: gl vs cpu %.1f dB, %g samples shaded alone\n", psnr(gl, cpu), stats.counter("piece_overflow_samples"));
+    EXPECT_GE(psnr(gl, cpu), 35.0);
+}
+
 TEST(MotionPathGl, MatchesCpuWithSubpixelSamples) {
     const Scene scene = builtin("crossing");
     const Image gl = test::render("motion-path-gl", scene, 64, 48, OptionMap(), nullptr, ShadingMode::Phong, 2);

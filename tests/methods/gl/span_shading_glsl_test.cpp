@@ -1,5 +1,6 @@
 // The GLSL twin of span shading (span_shading.glsl) against exposure::shadeTriangleSpan: the
-// same mean colour for the spans a built-in scene's samples really see, textured and lit.
+// same mean colour for the spans a built-in scene's samples really see, textured and lit, at one
+// sample and at the sites a pixel's shared shading takes (held to the triangle, wider, a box).
 
 #include "exposure/segmented_geometry.h"
 #include "exposure/triangle_surface_point.h"
@@ -24,9 +25,21 @@ struct ShadingProbe {
     glm::dvec2 ndc;
     float t0, t1;
     std::uint32_t triangle;
-    std::uint32_t pad;
+    std::uint32_t flags;  ///< 1: clampToTriangle, 2: boxFootprint
+    glm::vec2 footprintPixels;
+    glm::vec2 pad;
 };
-static_assert(sizeof(ShadingProbe) == 32);
+static_assert(sizeof(ShadingProbe) == 48);
+
+// The site probe k shades at: every third a sample's, the others a shared shading's, held to the
+// triangle with a footprint up to a pixel wide, a box or a lookup, its point moved off the
+// sample by up to half a pixel (so some points lie outside the triangle and are held to it).
+exposure::ShadingSite siteOf(std::size_t k, const glm::dvec2& ndc, int width, int height) {
+    if (k % 3 == 0) return exposure::sampleSite(ndc, 1);
+    const double fx = 0.25 + 0.25 * double(k % 4), fy = 0.25 + 0.25 * double((k / 4) % 4);
+    const glm::dvec2 shift(double(int(k % 5) - 2) * 0.25 * 2.0 / width, double(int(k % 7) - 3) * (1.0 / 6.0) * 2.0 / height);
+    return {ndc + shift, glm::dvec2(fx, fy), true, k % 3 == 1};
+}
 
 class SpanShadingGlsl : public testing::TestWithParam<std::tuple<std::string, exposure::SpanTextureFilter>> {};
 
@@ -54,7 +67,10 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
                 for (int i = 0; i + 1 < n; i += 2) {
                     const float t0 = float(seg.t0 + bounds[i] * (double(seg.t1) - seg.t0));
                     const float t1 = float(seg.t0 + bounds[i + 1] * (double(seg.t1) - seg.t0));
-                    if (t1 > t0) probes.push_back({ndc, t0, t1, seg.triangle, 0});
+                    if (!(t1 > t0)) continue;
+                    const exposure::ShadingSite site = siteOf(probes.size(), ndc, width, height);
+                    probes.push_back({site.ndc, t0, t1, seg.triangle, (site.clampToTriangle ? 1u : 0u) | (site.boxFootprint ? 2u : 0u),
+                                      glm::vec2(site.footprintPixels), glm::vec2(0.0f)});
                 }
             }
         }
@@ -90,13 +106,14 @@ TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
     float worst = 0.0f;
     for (std::size_t i = 0; i < probes.size(); ++i) {
         const ShadingProbe& p = probes[i];
-        const ShadedColor want = exposure::shadeTriangleSpan(segmented, viewport, shading, settings, p.triangle, p.t0, p.t1, exposure::sampleSite(p.ndc, 1), cache);
+        const exposure::ShadingSite site{p.ndc, glm::dvec2(p.footprintPixels), (p.flags & 1u) != 0, (p.flags & 2u) != 0};
+        const ShadedColor want = exposure::shadeTriangleSpan(segmented, viewport, shading, settings, p.triangle, p.t0, p.t1, site, cache);
         const glm::vec4 got = shaded[i];
         const float error = std::max({std::abs(got.x - want.color.x), std::abs(got.y - want.color.y), std::abs(got.z - want.color.z),
                                       std::abs(got.w - want.alpha)});
         worst = std::max(worst, error);
         if (error > 2e-3f && ++mismatches <= 5)
-            ADD_FAILURE() << "probe " << i << " triangle " << p.triangle << " [" << p.t0 << ", " << p.t1 << "] at (" << p.ndc.x << ", "
+            ADD_FAILURE() << "probe " << i << " (site flags " << p.flags << ") triangle " << p.triangle << " [" << p.t0 << ", " << p.t1 << "] at (" << p.ndc.x << ", "
                           << p.ndc.y << "): gl " << got.x << " " << got.y << " " << got.z << " " << got.w << ", cpu " << want.color.x
                           << " " << want.color.y << " " << want.color.z << " " << want.alpha;
     }

@@ -7,13 +7,25 @@
 // and shades only the visible opaque pieces, wholly visible pieces of one triangle that abut
 // merged first (exposure/visible_pieces.cpp). With u_writeSurfaces it also writes, per sample,
 // what shows there for the passes (exposure::PixelPasses on the CPU): each surface's triangle,
-// share, depths and the colour it adds.
+// share, depths and the colour it adds. With u_shadingPerPixel it leaves the opaque pieces
+// unshaded: it writes them to the piece pool for the pixel pass (motion_path_gl_pixel_shading),
+// which shades a pixel's samples together; a sample the pool cannot hold shades its own.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int u_maskBits;
 uniform int u_sortIntervals;
 uniform int u_exactWeights;
 uniform int u_writeSurfaces;
+uniform int u_shadingPerPixel;
+uniform uint u_pieceCapacity;
+
+// A visible opaque piece of a sample, for the pixel pass; each sample's in one run of the pool.
+struct PieceNode {
+    uint triangle;
+    float t0, t1, weight;
+};
+layout(std430, binding = 11) writeonly buffer PieceBuffer { PieceNode pieceNodes[]; };
+layout(std430, binding = 12) writeonly buffer SamplePieceBuffer { uvec2 samplePieces[]; };  // first, count (cleared to 0)
 
 struct PathNode {
     uint segment;
@@ -32,6 +44,8 @@ layout(std430, binding = 9) buffer ResolveCounterBuffer {
     uint intervalCount;
     uint maxIntervalCount;
     uint shownOverflowSamples;
+    uint piecesWritten;          // asked of the pool, past its capacity too
+    uint pieceOverflowSamples;   // samples that shaded their own pieces, the pool being full
 };
 
 // What shows in each sample, MAX_SHOWN records a sample (the buffer comes cleared to all ones:
@@ -111,6 +125,20 @@ void showSurface(uint tri, float share, vec3 depths, vec3 color) {
     }
     joinShown(a, shown[b].share, vec3(shown[b].depth, shown[b].nearest, shown[b].farthest), vec3(shown[b].r, shown[b].g, shown[b].b));
     shown[b] = ShownRecord(tri, share, depths.x, depths.y, depths.z, color.r, color.g, color.b);
+}
+
+// Adds a colour to the record that holds a triangle: its own, or its mesh's where they joined.
+void addShownColor(uint tri, vec3 color) {
+    if (u_writeSurfaces == 0) return;
+    int k = -1;
+    for (int r = 0; r < numShown && k < 0; ++r)
+        if (shown[r].triangle == tri) k = r;
+    for (int r = 0; r < numShown && k < 0; ++r)
+        if (meshOfTriangle(shown[r].triangle) == meshOfTriangle(tri)) k = r;
+    if (k < 0) return;
+    shown[k].r += color.r;
+    shown[k].g += color.g;
+    shown[k].b += color.b;
 }
 
 // An interval's depths over [t0, t1]: at the middle (linear), the nearer end and the farther.
@@ -361,7 +389,9 @@ void main() {
             pieceDepths[j - 1] = db;
             pieceDepths[j] = da;
         }
-    // Abutting whole pieces of one triangle are one span.
+    // Abutting whole pieces of one triangle are one span: shaded here, or kept in place (the
+    // first `spans` pieces) for the pixel pass, which adds their colour to the passes' records.
+    int spans = 0;
     for (int i = 0; i < numPieces;) {
         uint tri = pieceTriangles[i];
         float t0 = pieces[i].x, t1 = pieces[i].y, weight = pieces[i].z;
@@ -373,11 +403,33 @@ void main() {
             weight += pieces[j].z;
             depths = vec3(depths.x + pieceDepths[j].x * pieces[j].z, min(depths.y, pieceDepths[j].y), max(depths.z, pieceDepths[j].z));
         }
-        vec3 color = shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
-        sum += color;
-        showSurface(tri, weight, vec3(depths.x / weight, depths.yz), color);
-        ++shaded;
+        if (u_shadingPerPixel != 0) {
+            showSurface(tri, weight, vec3(depths.x / weight, depths.yz), vec3(0.0));
+            pieceTriangles[spans] = tri;
+            pieces[spans++] = vec4(t0, t1, weight, 1.0);
+        } else {
+            vec3 color = shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
+            sum += color;
+            showSurface(tri, weight, vec3(depths.x / weight, depths.yz), color);
+            ++shaded;
+        }
         i = j;
+    }
+    if (spans > 0) {
+        uint first = atomicAdd(piecesWritten, uint(spans));
+        if (first + uint(spans) <= u_pieceCapacity) {
+            for (int k = 0; k < spans; ++k) pieceNodes[first + uint(k)] = PieceNode(pieceTriangles[k], pieces[k].x, pieces[k].y, pieces[k].z);
+            samplePieces[uint(s.y) * uint(u_viewport.x) + uint(s.x)] = uvec2(first, uint(spans));
+        } else {
+            // The pool is full: this sample shades its own, as --option shading=sample does.
+            atomicAdd(pieceOverflowSamples, 1u);
+            for (int k = 0; k < spans; ++k) {
+                vec3 color = shadeTimeSpan(pieceTriangles[k], pieces[k].x, pieces[k].y, ndc).rgb * pieces[k].z;
+                sum += color;
+                addShownColor(pieceTriangles[k], color);
+                ++shaded;
+            }
+        }
     }
     atomicAdd(shadedSpans, uint(shaded));
     imageStore(u_output, s, vec4(sum, 1.0 - background));

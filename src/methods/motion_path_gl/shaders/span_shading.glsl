@@ -1,8 +1,9 @@
 // Span shading, the GLSL twin of exposure/span_shading.cpp with exposure/triangle_surface_point:
-// the mean colour and alpha of a triangle under one sample over [t0, t1]. Texture taps sit at
-// exact times along the uv path (a ratio of quadratics), as many as the footprint's mip level
-// needs, at most u_textureSamples (past which the level rises to length / k); lighting is
-// Simpson's rule, or more taps where the normal or view turns.
+// the mean colour and alpha of a triangle under one sample, or under a pixel's samples that share
+// the shading (ShadingSite), over [t0, t1]. Texture taps sit at exact times along the uv path (a
+// ratio of quadratics), as many as the footprint's mip level needs, at most u_textureSamples
+// (past which the level rises to length / k); lighting is Simpson's rule, or more taps where the
+// normal or view turns.
 
 uniform int u_numSegments;  // linear segments per triangle
 uniform int u_textureSamples;
@@ -12,29 +13,62 @@ const int kMaxSweptPieces = 8;
 const float kMaxTurnPerTap = 0.4;
 const int kMaxLightingTaps = 16;
 
-// A triangle under one sample, with the segment last used (taps come in time order).
+// Where a span is shaded (exposure::ShadingSite): a point, its texture footprint in pixels, and
+// for a shading that a pixel's samples share, the point held to its triangle and a box footprint.
+struct ShadingSite {
+    dvec2 ndc;
+    dvec2 footprintPixels;
+    bool clampToTriangle;
+    bool boxFootprint;
+};
+
+// One sample alone (exposure::sampleSite): one sample spacing.
+ShadingSite sampleSite(dvec2 ndc) { return ShadingSite(ndc, dvec2(1.0 / double(u_flags.y)), false, false); }
+
+// A triangle under a site, with the segment last used (taps come in time order).
 struct SpanPoint {
     uint triangle;
     dvec2 ndc;
+    dvec2 step;  // the footprint in NDC
+    bool clampToTriangle, boxFootprint;
     int segment;  // -1: none yet
     MovingTriangle moving;
     vec3 world0[3], world1[3], normal0[3], normal1[3];
     double segmentT0, segmentT1;
-    dvec2 uvNumerator[3];  // u^2, u, 1 coefficients
+    dvec3 cornerWeights[3];  // corner i's edge function: u^2, u, 1 coefficients
+    dvec2 uvNumerator[3];    // u^2, u, 1 coefficients
     dvec3 uvDenominator;
 };
 
-SpanPoint spanPoint(uint tri, dvec2 ndc) {
+SpanPoint spanPoint(uint tri, ShadingSite site) {
     SpanPoint p;
     p.triangle = tri;
-    p.ndc = ndc;
+    p.ndc = site.ndc;
+    p.step = dvec2(2.0 * site.footprintPixels.x / double(u_viewport.z), 2.0 * site.footprintPixels.y / double(u_viewport.w));
+    p.clampToTriangle = site.clampToTriangle;
+    p.boxFootprint = site.boxFootprint;
     p.segment = -1;
     return p;
 }
 
+// clampedBarycentrics (scene/barycentric.h): negative weights dropped, the rest renormalised.
+dvec3 clampedBarycentrics(dvec3 b) {
+    if (b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0) return b;
+    dvec3 c = max(b, dvec3(0.0));
+    double sum = c.x + c.y + c.z;
+    return sum > 0.0 ? c / sum : dvec3(1.0 / 3.0);
+}
+
+void selectSegmentAt(inout SpanPoint p, int k);
+
+// The segment that holds t (taps come in time order: mostly the one last used). One exit (see
+// shadeTimeSpanAt).
 void selectSegment(inout SpanPoint p, float t) {
     int k = clamp(int(t * float(u_numSegments)), 0, u_numSegments - 1);
-    if (k == p.segment) return;
+    if (k != p.segment) selectSegmentAt(p, k);
+}
+
+void selectSegmentAt(inout SpanPoint p, int k) {
     p.segment = k;
     float t0 = float(k) / float(u_numSegments), t1 = float(k + 1) / float(u_numSegments);
     p.segmentT0 = double(t0);
@@ -52,6 +86,7 @@ void selectSegment(inout SpanPoint p, float t) {
     p.uvDenominator = dvec3(0.0);
     for (int i = 0; i < 3; ++i) {
         dvec3 e = edgeFunction(p.moving, (i + 1) % 3, p.ndc);
+        p.cornerWeights[i] = e;
         dvec2 uv = dvec2(vertexUv(tri[i]));
         p.uvNumerator[0] = (i == 0 ? dvec2(0.0) : p.uvNumerator[0]) + e.x * uv;
         p.uvNumerator[1] = (i == 0 ? dvec2(0.0) : p.uvNumerator[1]) + e.y * uv;
@@ -66,14 +101,19 @@ bool surfaceAt(inout SpanPoint p, float t, bool withFootprint, out SurfacePoint 
     selectSegment(p, t);
     double u = localTime(p, t);
     HomogeneousSample s, right, down;
-    // One sample spacing in NDC: the texture footprint (u_viewport.xy is the sample grid).
-    dvec2 spacing = dvec2(2.0 / double(u_viewport.x), 2.0 / double(u_viewport.y));
-    sampleWithNeighbours(p.moving, u, p.ndc, dvec2(spacing.x, 0.0), dvec2(0.0, -spacing.y), s, right, down);
+    sampleWithNeighbours(p.moving, u, p.ndc, dvec2(p.step.x, 0.0), dvec2(0.0, -p.step.y), s, right, down);
     if (!s.isValid) return false;
     dvec3 baryRight = s.bary, baryDown = s.bary;
     if (withFootprint && right.isValid && down.isValid && right.viewDepth > 0.0 && down.viewDepth > 0.0) {
         baryRight = right.bary;
         baryDown = down.bary;
+    }
+    if (p.clampToTriangle) {
+        // The footprint keeps its shape; it moves with the point.
+        dvec3 held = clampedBarycentrics(s.bary);
+        baryRight += held - s.bary;
+        baryDown += held - s.bary;
+        s.bary = held;
     }
     vec3 world[3], normal[3];
     float uf = float(u);
@@ -86,13 +126,25 @@ bool surfaceAt(inout SpanPoint p, float t, bool withFootprint, out SurfacePoint 
 }
 
 bool uvAt(inout SpanPoint p, float t, out vec2 uv) {
+    // One exit (see shadeTimeSpanAt).
     selectSegment(p, t);
     double u = localTime(p, t);
     double denominator = quadraticAt(p.uvDenominator, u);
     uv = vec2(0.0);
-    if (denominator == 0.0 || isinf(denominator) || isnan(denominator)) return false;
-    uv = vec2(((p.uvNumerator[0] * u + p.uvNumerator[1]) * u + p.uvNumerator[2]) / denominator);
-    return true;
+    bool isDefined = !(denominator == 0.0 || isinf(denominator) || isnan(denominator));
+    if (isDefined) {
+        uv = vec2(((p.uvNumerator[0] * u + p.uvNumerator[1]) * u + p.uvNumerator[2]) / denominator);
+        // Held to the triangle (a box's taps are clipped to it instead).
+        if (p.clampToTriangle && !p.boxFootprint) {
+            dvec3 b = dvec3(quadraticAt(p.cornerWeights[0], u), quadraticAt(p.cornerWeights[1], u), quadraticAt(p.cornerWeights[2], u)) / denominator;
+            if (!(b.x >= 0.0 && b.y >= 0.0 && b.z >= 0.0)) {
+                dvec3 held = clampedBarycentrics(b);
+                uvec4 tri = triangles[p.triangle];
+                uv = vec2(held.x * dvec2(vertexUv(tri.x)) + held.y * dvec2(vertexUv(tri.y)) + held.z * dvec2(vertexUv(tri.z)));
+            }
+        }
+    }
+    return isDefined;
 }
 
 float turnBetween(vec3 a, vec3 b) {
@@ -106,8 +158,8 @@ vec3 quadraticThrough(vec3 a, vec3 m, vec3 b, float f) {
     return a + f * ((-3.0 * a + 4.0 * m - b) + f * (2.0 * a - 4.0 * m + 2.0 * b));
 }
 
-vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
-    SpanPoint point = spanPoint(tri, ndc);
+vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
+    SpanPoint point = spanPoint(tri, site);
     float times[3] = g_window.isIdentity ? float[3](t0, 0.5 * (t0 + t1), t1)
                                          : float[3](timeBetween(g_window, t0, t1, 0.0), timeBetween(g_window, t0, t1, 0.5),
                                                     timeBetween(g_window, t0, t1, 1.0));
@@ -172,7 +224,8 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     // Swept: the path cut where it bends (its middle off the chord by more than a quarter tap
     // width, a quarter of that per halving), one lookup of the footprint swept along each piece.
     int pieces = 1;
-    bool swept = u_sweptTexture != 0 && mat.info.y != 1;  // a mask keeps the taps
+    bool isBox = site.boxFootprint;
+    bool swept = u_sweptTexture != 0 && mat.info.y != 1 && !isBox;  // a mask keeps the taps
     if (swept) {
         float bend = length((ends[1].uv - 0.5 * (ends[0].uv + ends[2].uv)) * size);
         while (pieces < kMaxSweptPieces && bend > 0.25 * spacing * float(pieces * pieces)) pieces *= 2;
@@ -182,28 +235,39 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
     bool hasFrom = true;
 
     vec3 sum = vec3(0.0), specularSum = vec3(0.0);
-    float alphaSum = 0.0;
-    int used = 0;
+    float alphaSum = 0.0, weightSum = 0.0;
+    // A shared shading's box counts only the texels of its triangle, and each time as much as the
+    // triangle then covers of the box (at least kLeastCoverage, so a span keeps some weight).
+    bool isClipped = isBox && site.clampToTriangle;
+    uvec4 corners = triangles[tri];
+    vec2 clip[3] = vec2[3](vertexUv(corners.x), vertexUv(corners.y), vertexUv(corners.z));
+    const float kLeastCoverage = 1e-3;
     for (int i = 0; i < numTaps; ++i) {
         float f = (float(i) + 0.5) / float(numTaps);
         vec2 uv = ends[1].uv;
         vec2 sweep = vec2(0.0);
+        bool hasTap = true;
         if (swept) {
             vec2 to = ends[2].uv;
             bool hasTo = true;
             if (2 * (i + 1) == pieces) to = ends[1].uv;
             else if (i + 1 < pieces) hasTo = uvAt(point, timeBetween(g_window, t0, t1, float(i + 1) / float(pieces)), to);
-            bool hasPiece = hasFrom && hasTo;
+            hasTap = hasFrom && hasTo;
             uv = 0.5 * (from + to);
             sweep = to - from;
             from = to;
             hasFrom = hasTo;
-            if (!hasPiece) continue;
-        } else if (2 * i + 1 != numTaps && !uvAt(point, timeBetween(g_window, t0, t1, f), uv)) continue;
+        } else if (isClipped || 2 * i + 1 != numTaps) {
+            hasTap = uvAt(point, timeBetween(g_window, t0, t1, f), uv);
+        }
+        if (!hasTap) continue;
         vec2 duvdx = quadraticThrough(vec3(ends[0].duvdx, 0.0), vec3(ends[1].duvdx, 0.0), vec3(ends[2].duvdx, 0.0), f).xy;
         vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
-        vec4 texel = swept ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, max(16, u_textureSamples), u_tapsPerTexel)
-                           : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
+        float weight = 1.0;
+        vec4 texel = swept   ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, max(16, u_textureSamples), u_tapsPerTexel)
+                     : isBox ? sampleBox(tex, uv, duvdx, duvdy, isClipped, clip, weight)
+                             : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
+        weight = max(weight, kLeastCoverage);
         if (lit) {
             vec3 diffuse, specular;
             if (lightingTaps <= 3) {
@@ -216,16 +280,19 @@ vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) {
                 diffuse = mix(taps[j].diffuse, taps[k].diffuse, w);
                 specular = mix(taps[j].specular, taps[k].specular, w);
             }
-            sum += texel.rgb * diffuse;
-            specularSum += specular;
+            sum += texel.rgb * diffuse * weight;
+            specularSum += specular * weight;
         } else {
-            sum += texel.rgb;
+            sum += texel.rgb * weight;
         }
-        alphaSum += alphaOf(m, texel.a * vertexColor.a);
-        ++used;
+        alphaSum += alphaOf(m, texel.a * vertexColor.a) * weight;
+        weightSum += weight;
     }
-    if (used == 0) return vec4(0.0);
-    float scale = 1.0 / float(used);
+    if (weightSum == 0.0) return vec4(0.0);
+    float scale = 1.0 / weightSum;
     if (isNormalPass()) return vec4(meanNormal, alphaSum * scale);
     return vec4(mat.baseColorOpacity.rgb * vertexColor.rgb * sum * scale + specularSum * scale, alphaSum * scale);
 }
+
+// One sample's span, at the sample with a footprint of one sample spacing.
+vec4 shadeTimeSpan(uint tri, float t0, float t1, dvec2 ndc) { return shadeTimeSpanAt(tri, t0, t1, sampleSite(ndc)); }
