@@ -11,7 +11,7 @@ namespace streak::exposure {
 
 PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& method) {
     PixelShadingOptions o;
-    const std::string value = options.getString("shading", "sample");
+    const std::string value = options.getString("shading", "pixel");
     if (value == "pixel") o.rate = ShadingRate::Pixel;
     else if (value == "sample") o.rate = ShadingRate::Sample;
     else throw Error("method '" + method + "': shading must be pixel or sample, got '" + value + "'");

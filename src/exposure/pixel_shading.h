@@ -30,8 +30,8 @@ enum class ShadingRate {
     Sample,
 };
 
-// The exact methods' shading options: `shading=pixel|sample` (sample, until the GL twins shade
-// per pixel too; against Cycles, docs/BENCHMARKS.md) and `shading-cells=G` (4):
+// The exact methods' shading options: `shading=pixel|sample` (pixel; against Cycles,
+// docs/BENCHMARKS.md) and `shading-cells=G` (4):
 // at ShadingRate::Pixel a textured triangle is shaded in G x G cells of the pixel (at most --aa
 // N per axis), each shared by the samples that fall in it, an untextured one once per pixel.
 //
@@ -40,10 +40,18 @@ enum class ShadingRate {
 // as one sample's GPU lookup widened to the footprint. The lookup is about three times too wide
 // a filter for a pixel's box: against Cycles it loses 11-12 dB on CesiumMan and Fox at 1 cell.
 struct PixelShadingOptions {
-    ShadingRate rate = ShadingRate::Sample;
+    ShadingRate rate = ShadingRate::Pixel;
     int cellsPerAxis = 4;
     bool boxFilter = true;
     int cellsFor(int samplesPerAxis) const { return std::min(cellsPerAxis, samplesPerAxis); }
+    // The options a render in `mode` shades with: a data pass (the normal, the motion vectors) is
+    // a value of the point, not a colour to filter, so each sample takes its own and the pixel is
+    // their mean (a shared shading would take it at the cluster's centre, over its hull).
+    PixelShadingOptions forMode(ShadingMode mode) const {
+        PixelShadingOptions o = *this;
+        if (mode == ShadingMode::Normal || isVectorPass(mode)) o.rate = ShadingRate::Sample;
+        return o;
+    }
 };
 PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& method);
 

@@ -236,7 +236,11 @@ glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footpr
     // and in every direction, which blurs a box across the motion too (AnimatedCube against
     // Cycles: 47.6 dB with it, 52.3 dB without).
     int level = 0;
-    auto tapsAlong = [](float length, float spacing) { return std::max(1, int(std::ceil(length / spacing - 1e-3f))); };
+    // (At most kMaxBoxTaps + 1 an axis, which is as good as any more for the test below: an edge-on
+    // triangle's footprint can be a million texels long, whose taps overflow an int.)
+    auto tapsAlong = [](float length, float spacing) {
+        return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(kMaxBoxTaps + 1))));
+    };
     int tapsX = 0, tapsY = 0;
     for (;; ++level) {
         const float spacing = std::exp2(float(level));

@@ -142,7 +142,9 @@ vec4 sampleBox(int index, vec2 uv, vec2 duvdx, vec2 duvdy, bool isClipped, vec2 
         bool isFound = false;
         for (int l = 0; l <= maxLevel; ++l) {
             float spacing = exp2(float(l));
-            int x = max(1, int(ceil(lengthX / spacing - 1e-3))), y = max(1, int(ceil(lengthY / spacing - 1e-3)));
+            // (At most kMaxBoxTaps + 1 an axis, as Texture::sampleBox: no int overflows.)
+            int x = max(1, int(min(ceil(lengthX / spacing - 1e-3), float(kMaxBoxTaps + 1))));
+            int y = max(1, int(min(ceil(lengthY / spacing - 1e-3), float(kMaxBoxTaps + 1))));
             if (!isFound) {
                 level = l;
                 tapsX = x;

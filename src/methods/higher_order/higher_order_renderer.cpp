@@ -63,7 +63,9 @@ public:
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
         const raster::Viewport viewport{settings.width, settings.height};
-        Frame frame{scene, settings, m_options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}, {}, 1};
+        Options options = m_options;
+        options.resolve.shading = m_options.resolve.shading.forMode(settings.shading);
+        Frame frame{scene, settings, options, viewport, raster::samplePatternFor(settings.aa, settings.isGridPattern), {}, {}, {}, {}, 1};
         if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "setup");
@@ -112,7 +114,7 @@ public:
         if (refinement) refinement->record(stats, settings.adaptiveThreshold);
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples,
                                      refinement ? refinement->numPixelRenders(numPixels) : numPixels,
-                                     m_options.resolve.maxIntervals, m_options.resolve.shading);
+                                     m_options.resolve.maxIntervals, options.resolve.shading);
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setCounter("motion_order", frame.geometry->order());
         exposure::recordSpanShadingSettings(stats, m_options.spanShading);

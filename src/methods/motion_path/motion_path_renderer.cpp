@@ -122,7 +122,9 @@ public:
     explicit MotionPathRenderer(const Options& options) : m_options(options) {}
 
     Image render(const Scene& scene, const RenderSettings& settings, RenderContext& context) override {
-        Frame frame(scene, settings, m_options);
+        Options options = m_options;
+        options.shading = m_options.shading.forMode(settings.shading);
+        Frame frame(scene, settings, options);
         if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "generate");
@@ -208,7 +210,7 @@ public:
         stats.setCounter("sort_cycles", double(total.cycles));
         stats.setCounter("backface_intervals_culled", double(total.culledIntervals));
         stats.setCounter("samples_hidden_before_solving", double(total.samplesHidden));
-        exposure::recordPixelShadingStats(stats, total.shading, refinement ? refinement->numPixelRenders(numPixels) : numPixels, m_options.shading);
+        exposure::recordPixelShadingStats(stats, total.shading, refinement ? refinement->numPixelRenders(numPixels) : numPixels, options.shading);
         stats.setCounter("max_fragments", m_options.maxFragments);
         stats.setCounter("max_intervals", m_options.maxIntervals);
         stats.setCounter("mask_bits", m_options.maskBits);

@@ -145,7 +145,8 @@ public:
 
         // The piece pool of shading=pixel, and the pass that shades a pixel's samples together.
         const std::size_t budgetBytes = std::size_t(m_options.gpuMemoryMb) * (std::size_t(1) << 20);
-        const bool perPixel = m_options.shading.rate == exposure::ShadingRate::Pixel &&
+        const exposure::PixelShadingOptions shading = m_options.shading.forMode(settings.shading);
+        const bool perPixel = shading.rate == exposure::ShadingRate::Pixel &&
                               grid.numSamples() * kSampleRunBytes + shownBytes < budgetBytes / 4;
         const std::size_t pieceCapacity =
             perPixel ? std::min(grid.numSamples() * kPiecesPerSample, (budgetBytes / 4 - shownBytes - grid.numSamples() * kSampleRunBytes) / kPieceBytes) : 0;
@@ -155,7 +156,7 @@ public:
         glClearNamedBufferData(sampleRuns.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zeroRun);
         setInt(resolve.id(), "u_shadingPerPixel", perPixel ? 1 : 0);
         glProgramUniform1ui(resolve.id(), glGetUniformLocation(resolve.id(), "u_pieceCapacity"), GLuint(pieceCapacity));
-        const int cells = m_options.shading.cellsFor(grid.aa);
+        const int cells = shading.cellsFor(grid.aa);
         const gpu::GlProgram* pixelShading = nullptr;
         if (perPixel) {
             std::map<std::string, std::string> pixelDefines = defines;
@@ -170,7 +171,7 @@ public:
             glProgramUniform1f(id, glGetUniformLocation(id, "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
             setInt(id, "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
             setInt(id, "u_shadingCells", cells);
-            setInt(id, "u_boxFilter", m_options.shading.boxFilter ? 1 : 0);
+            setInt(id, "u_boxFilter", shading.boxFilter ? 1 : 0);
             setInt(id, "u_writeSurfaces", writesSurfaces ? 1 : 0);
         }
 
@@ -304,7 +305,7 @@ public:
             shaded.pieces = m_pixelCounters.pieces;
             shaded.shadedSpans = std::int64_t(m_pixelCounters.clusters) + m_counters.shadedSpans;
             shaded.visibleTriangles = m_pixelCounters.visibleTriangles;
-            exposure::recordPixelShadingStats(stats, shaded, double(grid.width) * grid.height, m_options.shading);
+            exposure::recordPixelShadingStats(stats, shaded, double(grid.width) * grid.height, shading);
             stats.setCounter("piece_capacity", double(pieceCapacity));
             stats.setCounter("piece_overflow_samples", double(m_counters.pieceOverflowSamples));
             stats.setCounter("piece_overflow_pixels", double(m_pixelCounters.overflowPixels));
