@@ -78,6 +78,19 @@ bool MovingTriangle::stillRowRange(double y, int orientation, double& xLo, doubl
     return xLo <= xHi;
 }
 
+bool MovingTriangle::stillRowSection(double y, int orientation, double& xLo, double& xHi) const {
+    xLo = -std::numeric_limits<double>::infinity(), xHi = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < 3; ++e) {
+        // o (cx x + cy y + cz) >= 0, so o cx x >= -o (cy y + cz).
+        const glm::dvec3 c = m_c[e] * double(orientation);
+        const double r = -c.y * y - c.z;
+        if (c.x > 0.0) xLo = std::max(xLo, r / c.x);
+        else if (c.x < 0.0) xHi = std::min(xHi, r / c.x);
+        else if (r > 0.0) return false;
+    }
+    return xLo < xHi;
+}
+
 int MovingTriangle::stillSpans(const std::array<Quadratic, 3>& edges, const glm::dvec2& ndc, double zNear, bool checkNearPlane,
                                std::array<double, 8>& bounds, RootCaseCounts* rootCases) const {
     // What solvedSpans computes when no corner moves: three constant quadratics (no roots, one

@@ -46,6 +46,11 @@ public:
     // range is a little wider than the exact one). Returns false when the whole row stays
     // outside. A box loop then visits only the row's samples in range, a rasterizer's span.
     bool stillRowRange(double y, int orientation, double& xLo, double& xHi) const;
+    // For a still triangle of orientation +1 or -1: its exact cross-section [xLo, xHi] (NDC x)
+    // of the horizontal line at height y, where every edge function has the orientation's sign.
+    // Returns false when the line misses it. A line sample's covered length, with no on-edge
+    // rule: an edge meets a line in one point, which has no length.
+    bool stillRowSection(double y, int orientation, double& xLo, double& xHi) const;
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;

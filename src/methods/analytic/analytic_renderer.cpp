@@ -43,6 +43,7 @@ struct Options {
     bool hullCull = true;  ///< and a moving segment's samples beyond its swept hull (with tileCull)
     bool earlyCull = true; ///< skip the samples where nearer opaque triangles hide a segment all the shutter (renderRect)
     bool checkDepthOrder = false;
+    bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (renderRect)
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
 };
@@ -61,6 +62,7 @@ struct TileScratch : exposure::ExactTileScratch<exposure::MovingTriangleCache, C
     raster::SweptHull hull;
     raster::SweptPieces pieces;  // where a segment has no hull (it turns over)
     exposure::EarlyCull earlyCull;
+    bool isLineTile = false;  ///< this tile's samples are lines across their pixels (renderRect)
 };
 
 class AnalyticRenderer final : public Renderer {
@@ -79,6 +81,15 @@ public:
             frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
+        // Line samples need a still frame's time to stand for x: one segment a triangle, every
+        // time weighed alike (a box shutter, no rolling), and no passes, whose records keep times.
+        frame.canLineSample = m_options.lineSamples && frame.segmented->numSegments() == 1 && scene.shutter.isBox() && !settings.passes.any() &&
+                              !m_options.checkDepthOrder;
+        // Every line spans its pixel, so cells across x divide nothing: a line tile's samples share
+        // their shadings over the whole pixel, each a box over the stretches and rows it serves.
+        frame.lineResolve = options.resolve;
+        frame.lineResolve.shading.cellsPerAxis = 1;
+        context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         std::optional<exposure::AdaptiveSampling> refinement;
@@ -150,6 +161,8 @@ private:
         simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
+        bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
+        exposure::ExactResolveOptions lineResolve;  ///< the resolve's options in a line tile: one shading cell
 
         // A segment's surface and nearest depth, for the first pass's unseen segments.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {
@@ -191,6 +204,79 @@ private:
         return false;
     }
 
+    // Where a line sample's span [t0, t1] (a stretch of its pixel's width, renderRect) is shaded:
+    // at the stretch's middle, on the rows of `site` (a sample's, or a shared shading's), its
+    // texture a box as wide as the stretch, clipped to the triangle: what the line sees, where a
+    // sample's bell would blur across it (ToyCar at --aa 2 against Cycles: 43.1 dB with the
+    // bell, 47.8 with the box). The site's x only says which pixel.
+    static exposure::ShadingSite lineSite(exposure::ShadingSite site, float t0, float t1, int width) {
+        const double step = 2.0 / double(width);
+        const double left = -1.0 + step * std::floor((site.ndc.x + 1.0) / step);
+        site.ndc.x = left + step * 0.5 * (double(t0) + double(t1));
+        site.footprintPixels.x = std::max(double(t1) - double(t0), 1.0 / 64.0);
+        site.clampToTriangle = true, site.boxFootprint = true;
+        return site;
+    }
+
+    // A still segment's records in a line tile (renderRect): for each sample row of its box, the
+    // stretch of the row's line it covers, cut at the pixels' edges, each piece a record whose
+    // times are its ends' share of the pixel's width.
+    static void visitLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& region, std::uint32_t index,
+                           const raster::MovingTriangle& moving, bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
+        const exposure::TriangleSegment& segment = frame.segmented->segments()[index];
+        const FlatTriangle& tri = frame.segmented->flat().triangles()[segment.triangle];
+        Counters& counters = scratch.counters;
+        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, boxWidth = region.x1 - region.x0 + 1;
+        // Edge-on (no area), or seen from behind by a single-sided triangle: nothing on any line.
+        if (segment.orientation == 0) return;
+        if (!tri.isDoubleSided && !moving.isFrontFacing(0.5)) {
+            ++counters.culledBackFacing;
+            return;
+        }
+        const double step = 2.0 / double(frame.viewport.width);
+        for (int py = region.y0; py <= region.y1; ++py) {
+            const auto rowFirst = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp);
+            int open0 = region.x0, open1 = region.x1;
+            if (isCullingEarly) {
+                scratch.earlyCull.openRow(py, rect.x0, rect.y0, nearest, open0, open1);
+                counters.samplesHidden += std::int64_t(boxWidth - std::max(0, open1 - open0 + 1)) * spp;
+                if (open0 > open1) continue;
+            }
+            for (int s = 0; s < spp; ++s) {
+                const double y = scratch.sampleNdc[rowFirst + std::uint32_t(s)].y;
+                double xLo, xHi;
+                int first = open1 + 1, last = open1;
+                if (moving.stillRowSection(y, segment.orientation, xLo, xHi)) {
+                    xLo = std::clamp(xLo, -2.0, 2.0), xHi = std::clamp(xHi, -2.0, 2.0);
+                    first = std::max(open0, int(std::floor((xLo + 1.0) / step)));
+                    last = std::min(open1, int(std::ceil((xHi + 1.0) / step)) - 1);
+                }
+                counters.samplesCulled += (open1 - open0 + 1) - std::max(0, last - first + 1);
+                for (int px = first; px <= last; ++px) {
+                    const auto sample = std::uint32_t(rowFirst + std::uint32_t((px - region.x0) * spp + s));
+                    if (isCullingEarly && scratch.earlyCull.isHidden(sample, nearest)) {
+                        ++counters.samplesHidden;
+                        continue;
+                    }
+                    const double left = -1.0 + step * double(px);
+                    const double u0 = std::max(0.0, (xLo - left) / step), u1 = std::min(1.0, (xHi - left) / step);
+                    if (!(u1 > u0)) continue;
+                    const raster::HomogeneousSample s0 = moving.sample(0.0, {left + u0 * step, y});
+                    const raster::HomogeneousSample s1 = moving.sample(0.0, {left + u1 * step, y});
+                    if (!s0.isValid || !s1.isValid) continue;
+                    exposure::TileRecord r;
+                    r.sample = sample;
+                    r.interval.t0 = float(u0), r.interval.t1 = float(u1);
+                    r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
+                    r.interval.source = index;
+                    scratch.records.push_back(r);
+                    if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
+                        scratch.earlyCull.cover(sample, std::max(r.interval.depth0, r.interval.depth1));
+                }
+            }
+        }
+    }
+
     // The pixels of rect, within a tile whose segments are `items` (exposure::renderExactTile);
     // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
     // them instead).
@@ -221,6 +307,19 @@ private:
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
                                     !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->numSegments() == 1;
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
+        // Line samples (line-samples=1; Gribel, Barringer and Akenine-Moller 2011 sample lines
+        // of the screen): where every segment of the tile is still, wholly in front of the near
+        // plane, a sample is the horizontal line through it across its pixel, and the time of
+        // its records stands for x along that line (0 at the pixel's left edge, 1 at its right).
+        // A still triangle covers the line over one stretch (stillRowSection), its depth along
+        // it the plane's, so the exact resolve in time is the exact visibility along the line
+        // and a piece's weight the share of the line it shows: an edge is integrated across the
+        // pixel, and only where it crosses the rows is it sampled, at the pattern's N^2 rows. The
+        // early cull holds as it is: a line covered end to end hides what lies behind on it.
+        scratch.isLineTile = frame.canLineSample && !frame.firstPass && std::all_of(items.begin(), items.end(), [&](std::uint32_t index) {
+            const exposure::TriangleSegment& s = segments[index];
+            return s.clip0 == s.clip1 && s.isInFront() && s.nearness <= 1.0f / scene.camera.zNear;
+        });
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, segments);
         scratch.sortRunsBySource = isCullingEarly;
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
@@ -247,6 +346,11 @@ private:
                 }
             }
             const FlatTriangle& tri = triangles[segment.triangle];
+            const bool isOccluder = isCullingEarly && !scene.materials[tri.material].isTranslucent();
+            if (scratch.isLineTile) {
+                visitLines(frame, rect, region, index, moving, isOccluder, nearest, isCullingEarly, scratch);
+                continue;
+            }
             // Depth on the triangle is a convex combination of its corners' depths, so only a
             // segment reaching nearer than the near plane needs the depth check.
             const bool checkNearPlane = !(segment.isInFront() && segment.nearness <= 1.0f / scene.camera.zNear);
@@ -254,7 +358,6 @@ private:
             // edge quadratics and staysOutside answers in batches (EdgeBatch, SIMD), then the
             // exact spans of the samples not culled, as records, in the run's order.
             const int cullOrientation = frame.options.tileCull ? segment.orientation : 0;
-            const bool isOccluder = isCullingEarly && !scene.materials[tri.material].isTranslucent();
             auto visitRun = [&](std::uint32_t first, std::ptrdiff_t stride, int count) __attribute__((always_inline)) {
                 for (int done = 0; done < count; done += raster::EdgeBatch::kCapacity) {
                     const int n = std::min(count - done, raster::EdgeBatch::kCapacity);
@@ -364,10 +467,12 @@ private:
         };
         const auto triangleOfSource = [&](std::uint32_t source) { return segments[source].triangle; };
         exposure::resolveExactTile(
-            rect, frame.pattern, scene, triangles, width, height, frame.options.resolve, start, scratch, image,
+            rect, frame.pattern, scene, triangles, width, height, scratch.isLineTile ? frame.lineResolve : frame.options.resolve, start, scratch, image,
             triangleOfSource,
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
-                return frame.shade(triangle, t0, t1, site, row, scratch.cache);
+                if (!scratch.isLineTile) return frame.shade(triangle, t0, t1, site, row, scratch.cache);
+                // A still triangle, at the middle of the stretch of the line that the span is.
+                return frame.shade(triangle, 0.0f, 1.0f, lineSite(site, t0, t1, width), row, scratch.cache);
             },
             frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         return true;
@@ -399,6 +504,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
+    o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
     o.spanShading = exposure::spanShadingSettings(options, "analytic");
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.resolve.shading = exposure::pixelShadingOptions(options, "analytic");
