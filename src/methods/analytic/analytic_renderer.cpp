@@ -1,6 +1,7 @@
 #include "methods/analytic/analytic_renderer.h"
 
 #include "exposure/early_cull.h"
+#include "exposure/line_samples.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_resolve.h"
 #include "exposure/tile_pass.h"
@@ -43,7 +44,7 @@ struct Options {
     bool hullCull = true;  ///< and a moving segment's samples beyond its swept hull (with tileCull)
     bool earlyCull = true; ///< skip the samples where nearer opaque triangles hide a segment all the shutter (renderRect)
     bool checkDepthOrder = false;
-    bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (renderRect)
+    bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
 };
@@ -81,10 +82,9 @@ public:
             frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
-        // Line samples need a still frame's time to stand for x: one segment a triangle, every
-        // time weighed alike (a box shutter, no rolling), and no passes, whose records keep times.
-        frame.canLineSample = m_options.lineSamples && frame.segmented->numSegments() == 1 && scene.shutter.isBox() && !settings.passes.any() &&
-                              !m_options.checkDepthOrder;
+        // (The passes take a surface's share and depths as they come: along a line, its coverage
+        // and its depths there. The depth-order check measures in time.)
+        frame.canLineSample = m_options.lineSamples && exposure::lineSamplingAllowed(scene, *frame.segmented) && !m_options.checkDepthOrder;
         // Every line spans its pixel, so cells across x divide nothing: a line tile's samples share
         // their shadings over the whole pixel, each a box over the stretches and rows it serves.
         frame.lineResolve = options.resolve;
@@ -204,23 +204,9 @@ private:
         return false;
     }
 
-    // Where a line sample's span [t0, t1] (a stretch of its pixel's width, renderRect) is shaded:
-    // at the stretch's middle, on the rows of `site` (a sample's, or a shared shading's), its
-    // texture a box as wide as the stretch, clipped to the triangle: what the line sees, where a
-    // sample's bell would blur across it (ToyCar at --aa 2 against Cycles: 43.1 dB with the
-    // bell, 47.8 with the box). The site's x only says which pixel.
-    static exposure::ShadingSite lineSite(exposure::ShadingSite site, float t0, float t1, int width) {
-        const double step = 2.0 / double(width);
-        const double left = -1.0 + step * std::floor((site.ndc.x + 1.0) / step);
-        site.ndc.x = left + step * 0.5 * (double(t0) + double(t1));
-        site.footprintPixels.x = std::max(double(t1) - double(t0), 1.0 / 64.0);
-        site.clampToTriangle = true, site.boxFootprint = true;
-        return site;
-    }
-
-    // A still segment's records in a line tile (renderRect): for each sample row of its box, the
-    // stretch of the row's line it covers, cut at the pixels' edges, each piece a record whose
-    // times are its ends' share of the pixel's width.
+    // A still segment's records in a line tile (renderRect, exposure/line_samples.h): for each
+    // sample row of its box, the stretch of each pixel's line it covers, its times the ends'
+    // shares of the pixel's width.
     static void visitLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& region, std::uint32_t index,
                            const raster::MovingTriangle& moving, bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
         const exposure::TriangleSegment& segment = frame.segmented->segments()[index];
@@ -233,7 +219,6 @@ private:
             ++counters.culledBackFacing;
             return;
         }
-        const double step = 2.0 / double(frame.viewport.width);
         for (int py = region.y0; py <= region.y1; ++py) {
             const auto rowFirst = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp);
             int open0 = region.x0, open1 = region.x1;
@@ -244,35 +229,25 @@ private:
             }
             for (int s = 0; s < spp; ++s) {
                 const double y = scratch.sampleNdc[rowFirst + std::uint32_t(s)].y;
-                double xLo, xHi;
-                int first = open1 + 1, last = open1;
-                if (moving.stillRowSection(y, segment.orientation, xLo, xHi)) {
-                    xLo = std::clamp(xLo, -2.0, 2.0), xHi = std::clamp(xHi, -2.0, 2.0);
-                    first = std::max(open0, int(std::floor((xLo + 1.0) / step)));
-                    last = std::min(open1, int(std::ceil((xHi + 1.0) / step)) - 1);
-                }
-                counters.samplesCulled += (open1 - open0 + 1) - std::max(0, last - first + 1);
-                for (int px = first; px <= last; ++px) {
+                int covered = 0;
+                exposure::forEachLineStretch(moving, segment.orientation, y, open0, open1, frame.viewport.width,
+                                             [&](int px, const exposure::LineStretch& stretch) {
+                    ++covered;
                     const auto sample = std::uint32_t(rowFirst + std::uint32_t((px - region.x0) * spp + s));
                     if (isCullingEarly && scratch.earlyCull.isHidden(sample, nearest)) {
                         ++counters.samplesHidden;
-                        continue;
+                        return;
                     }
-                    const double left = -1.0 + step * double(px);
-                    const double u0 = std::max(0.0, (xLo - left) / step), u1 = std::min(1.0, (xHi - left) / step);
-                    if (!(u1 > u0)) continue;
-                    const raster::HomogeneousSample s0 = moving.sample(0.0, {left + u0 * step, y});
-                    const raster::HomogeneousSample s1 = moving.sample(0.0, {left + u1 * step, y});
-                    if (!s0.isValid || !s1.isValid) continue;
                     exposure::TileRecord r;
                     r.sample = sample;
-                    r.interval.t0 = float(u0), r.interval.t1 = float(u1);
-                    r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
+                    r.interval.t0 = stretch.u0, r.interval.t1 = stretch.u1;
+                    r.interval.depth0 = stretch.depth0, r.interval.depth1 = stretch.depth1;
                     r.interval.source = index;
                     scratch.records.push_back(r);
                     if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
                         scratch.earlyCull.cover(sample, std::max(r.interval.depth0, r.interval.depth1));
-                }
+                });
+                counters.samplesCulled += (open1 - open0 + 1) - covered;
             }
         }
     }
@@ -307,19 +282,9 @@ private:
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
                                     !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->numSegments() == 1;
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
-        // Line samples (line-samples=1; Gribel, Barringer and Akenine-Moller 2011 sample lines
-        // of the screen): where every segment of the tile is still, wholly in front of the near
-        // plane, a sample is the horizontal line through it across its pixel, and the time of
-        // its records stands for x along that line (0 at the pixel's left edge, 1 at its right).
-        // A still triangle covers the line over one stretch (stillRowSection), its depth along
-        // it the plane's, so the exact resolve in time is the exact visibility along the line
-        // and a piece's weight the share of the line it shows: an edge is integrated across the
-        // pixel, and only where it crosses the rows is it sampled, at the pattern's N^2 rows. The
-        // early cull holds as it is: a line covered end to end hides what lies behind on it.
-        scratch.isLineTile = frame.canLineSample && !frame.firstPass && std::all_of(items.begin(), items.end(), [&](std::uint32_t index) {
-            const exposure::TriangleSegment& s = segments[index];
-            return s.clip0 == s.clip1 && s.isInFront() && s.nearness <= 1.0f / scene.camera.zNear;
-        });
+        // Line samples (exposure/line_samples.h) where every segment of the tile is still; not in
+        // adaptive sampling's first pass, one point per pixel.
+        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, segments, scene.camera.zNear);
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, segments);
         scratch.sortRunsBySource = isCullingEarly;
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
@@ -472,7 +437,7 @@ private:
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 if (!scratch.isLineTile) return frame.shade(triangle, t0, t1, site, row, scratch.cache);
                 // A still triangle, at the middle of the stretch of the line that the span is.
-                return frame.shade(triangle, 0.0f, 1.0f, lineSite(site, t0, t1, width), row, scratch.cache);
+                return frame.shade(triangle, 0.0f, 1.0f, exposure::lineSite(site, t0, t1, width), row, scratch.cache);
             },
             frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         return true;

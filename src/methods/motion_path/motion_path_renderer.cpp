@@ -1,6 +1,7 @@
 #include "methods/motion_path/motion_path_renderer.h"
 
 #include "exposure/early_cull.h"
+#include "exposure/line_samples.h"
 #include "exposure/pixel_shading.h"
 #include "exposure/sample_passes.h"
 #include "exposure/segmented_geometry.h"
@@ -52,6 +53,7 @@ struct Options {
     bool mergeSegments = true;
     bool sortIntervals = true;
     bool earlyCull = true;  ///< skip the samples where nearer opaque triangles hide a path all the shutter (renderRect)
+    bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     exposure::PixelShadingOptions shading;
@@ -97,6 +99,7 @@ struct TileScratch {
     std::vector<float> nearness;           ///< a cut pixel's keys (the memory budget)
     std::vector<std::uint32_t> seenPaths;  ///< an adaptive first pass's paths with intervals in the tile (noteUnseenItems)
     exposure::EarlyCull earlyCull;
+    bool isLineTile = false;               ///< this tile's samples are lines across their pixels (renderRect)
     std::vector<glm::vec3> color;
     std::vector<float> coverage;           ///< per sample
     exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
@@ -130,6 +133,8 @@ public:
             PhaseTimer timer(context.stats, "generate");
             frame.generate();
         }
+        frame.canLineSample = options.lineSamples && exposure::lineSamplingAllowed(scene, frame.segmented);
+        context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         std::optional<raster::TileGrid> grid;
@@ -267,6 +272,7 @@ private:
         raster::Viewport viewport;
         raster::SamplePattern pattern;
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
+        bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
 
         // A path's surface and nearest depth, for the first pass's unseen paths.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t path) const {
@@ -335,6 +341,10 @@ private:
             const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
             const Material& material = frame.scene.materials[tri.material];
             const raster::MovingTriangle& moving = scratch.movingTriangles.get(frame.segmented, fragments[i].path);
+            if (scratch.isLineTile) {
+                buildLineInterval(frame, fragments[i].path, moving, ndc, scratch, out);
+                continue;
+            }
             scratch.events.clear();
             frame.exactSpans(path, moving, ndc, scratch.events);
             for (std::size_t e = 0; e + 1 < scratch.events.size(); e += 2) {
@@ -351,6 +361,62 @@ private:
                     interval.color = shaded.color, interval.alpha = shaded.alpha;
                 }
                 out.push_back(interval);
+            }
+        }
+    }
+
+    // A still path's interval at a line sample (a line tile's, exposure/line_samples.h): the
+    // stretch of the line through ndc that it covers, its times the ends' shares of the pixel.
+    static void buildLineInterval(const Frame& frame, std::uint32_t index, const raster::MovingTriangle& still, const glm::dvec2& ndc,
+                                  TileScratch& scratch, std::vector<Interval>& out) {
+        const exposure::TriangleSegment& path = frame.paths[index];
+        const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
+        exposure::LineStretch stretch;
+        if (path.orientation == 0 || !exposure::lineStretchAt(still, path.orientation, ndc, frame.viewport.width, stretch)) return;
+        if (!tri.isDoubleSided && !still.isFrontFacing(0.5)) {
+            ++scratch.counters.culledIntervals;
+            return;
+        }
+        Interval interval;
+        interval.t0 = stretch.u0, interval.t1 = stretch.u1;
+        interval.depth0 = stretch.depth0, interval.depth1 = stretch.depth1;
+        interval.source = index;
+        if (frame.scene.materials[tri.material].isTranslucent()) {
+            const exposure::ShadingSite site = exposure::lineSite(exposure::sampleSite(ndc, frame.settings.aa), stretch.u0, stretch.u1, frame.viewport.width);
+            const ShadedColor shaded = frame.shade(path.triangle, 0.0f, 1.0f, site, ShutterWindow(), scratch.movingTriangles);
+            interval.color = shaded.color, interval.alpha = shaded.alpha;
+        }
+        out.push_back(interval);
+    }
+
+    // A still path's fragments in a line tile (exposure/line_samples.h): each sample of the
+    // rows of `scan` whose line it covers; and, where it covers the line end to end, opaque,
+    // the early cull's mark there.
+    static void rasterizeLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& scan, std::uint32_t index,
+                               bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
+        const exposure::TriangleSegment& path = frame.paths[index];
+        if (path.orientation == 0) return;  // edge-on: no area
+        const raster::MovingTriangle& still = scratch.movingTriangles.get(frame.segmented, index);
+        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, width = frame.viewport.width;
+        for (int py = scan.y0; py <= scan.y1; ++py) {
+            int open0 = scan.x0, open1 = scan.x1;
+            if (isCullingEarly) {
+                scratch.earlyCull.openRow(py, rect.x0, rect.y0, nearest, open0, open1);
+                scratch.counters.samplesHidden += std::int64_t(scan.x1 - scan.x0 + 1 - std::max(0, open1 - open0 + 1)) * spp;
+                if (open0 > open1) continue;
+            }
+            for (int s = 0; s < spp; ++s) {
+                const double y = frame.pattern.ndcOf(scan.x0, py, s, width, frame.viewport.height).y;
+                exposure::forEachLineStretch(still, path.orientation, y, open0, open1, width, [&](int px, const exposure::LineStretch& stretch) {
+                    const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                    if (isCullingEarly && scratch.earlyCull.isHidden(sample, nearest)) {
+                        ++scratch.counters.samplesHidden;
+                        return;
+                    }
+                    scratch.fragments.push_back({sample, index, path.nearness});
+                    if (isOccluder && stretch.u0 == 0.0f && stretch.u1 == 1.0f)
+                        scratch.earlyCull.cover(sample, std::max(stretch.depth0, stretch.depth1));
+                });
             }
         }
     }
@@ -443,6 +509,9 @@ private:
         const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
                                     frame.segmented.numSegments() == 1;
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
+        // Line samples (exposure/line_samples.h) where every path of the tile is still; not in
+        // adaptive sampling's first pass, one point per pixel.
+        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, frame.paths, frame.scene.camera.zNear);
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, frame.paths);
         for (std::size_t k = 0; k < items.size(); ++k) {
             if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, k, items.size())) {
@@ -467,6 +536,11 @@ private:
             // A still opaque path marks the samples it covers all the shutter, as the build
             // would find its interval there.
             const FlatTriangle& tri = frame.geometry.triangles()[segment.triangle];
+            if (scratch.isLineTile) {
+                rasterizeLines(frame, rect, scan, index, isCullingEarly && !frame.scene.materials[tri.material].isTranslucent(), nearest, isCullingEarly,
+                               scratch);
+                continue;
+            }
             const raster::MovingTriangle* still = nullptr;
             if (isCullingEarly && !frame.scene.materials[tri.material].isTranslucent()) {
                 const raster::MovingTriangle& moving = scratch.movingTriangles.get(frame.segmented, index);
@@ -619,8 +693,10 @@ private:
         scratch.color.resize(numSamples);
         for (std::size_t first = 0; first < numSamples; first += std::size_t(spp)) {
             const ShutterWindow window = sampleWindow(frame, rect, first);
+            // Every line spans its pixel, so cells across x divide nothing: a line tile's samples
+            // share their shadings over the pixel.
             scratch.pixelShading.begin(frame.pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
-                                       options.shading.cellsFor(frame.pattern.samplesPerAxis()));
+                                       scratch.isLineTile ? 1 : options.shading.cellsFor(frame.pattern.samplesPerAxis()));
             if (frame.passes) scratch.passes.begin(*frame.passes);
             for (int s = 0; s < spp; ++s) {
                 const std::size_t i = first + std::size_t(s);
@@ -678,6 +754,8 @@ private:
             scratch.pixelShading.finish(
                 options.shading,
                 [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site) {
+                    if (scratch.isLineTile)  // a still triangle, at the middle of the line's stretch
+                        return frame.shade(triangle, 0.0f, 1.0f, exposure::lineSite(site, t0, t1, frame.viewport.width), window, scratch.movingTriangles);
                     return frame.shade(triangle, t0, t1, site, window, scratch.movingTriangles);
                 },
                 std::span<glm::vec3>(scratch.color).subspan(first, std::size_t(spp)), counters.shading,
@@ -714,6 +792,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
+    o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.spanShading = exposure::spanShadingSettings(options, "motion-path");
     o.shading = exposure::pixelShadingOptions(options, "motion-path");

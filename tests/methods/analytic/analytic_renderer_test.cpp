@@ -2,20 +2,11 @@
 
 #include "image/metrics.h"
 #include "methods/registry.h"
-#include "raster/sample_pattern.h"
 #include "scene/builtin_scenes.h"
 #include "support/render.h"
 #include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <limits>
-#include <optional>
-#include <utility>
-#include <vector>
 
 namespace streak {
 
@@ -141,136 +132,6 @@ TEST(AnalyticRenderer, DepthOrderCheckFindsNoErrorOnPlanarTranslation) {
     render("analytic", scene, 8, 8, withOption("check-depth-order", "1"), &stats);
     EXPECT_GT(stats.counter("depth_overlap_time"), 0.0);
     EXPECT_NEAR(stats.counter("depth_misordered_fraction"), 0.0, 1e-9);
-}
-
-// line-samples=1 against the closed form: in a still frame each sample is the horizontal line
-// through it across its pixel, so a pixel is the mean, over the pattern's rows, of the length of
-// each row's line that every colour shows. Here that length comes from the triangles' corners in
-// raster space alone: where the line crosses the edges (not the renderer's edge functions).
-namespace {
-
-struct RasterTriangle {
-    std::array<glm::vec2, 3> corners;  ///< raster pixels
-    float depth;                       ///< every corner's view depth
-};
-
-// The x stretch of the line at height y that the triangle covers, if any.
-std::optional<std::pair<float, float>> crossing(const RasterTriangle& t, float y) {
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (int e = 0; e < 3; ++e) {
-        const glm::vec2 a = t.corners[std::size_t(e)], b = t.corners[std::size_t((e + 1) % 3)];
-        if ((y < std::min(a.y, b.y)) || (y > std::max(a.y, b.y)) || a.y == b.y) continue;
-        const float x = a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
-        lo = std::min(lo, x), hi = std::max(hi, x);
-    }
-    if (!(hi > lo)) return std::nullopt;
-    return std::make_pair(lo, hi);
-}
-
-// The length of [lo, hi] within [x0, x1].
-float within(float lo, float hi, float x0, float x1) { return std::max(0.0f, std::min(hi, x1) - std::max(lo, x0)); }
-
-// Adds the triangles to the scene at their depths, through the test camera, as one mesh each.
-void addRasterTriangles(Scene& scene, const test::PixelCamera& cam, const std::vector<RasterTriangle>& triangles, std::uint32_t material) {
-    for (const RasterTriangle& t : triangles) {
-        Mesh mesh;
-        mesh.material = material;
-        mesh.numKeys = 2;  // the same pose at both ends: still
-        for (int key = 0; key < 2; ++key)
-            for (const glm::vec2& c : t.corners) mesh.positions.push_back(cam.at(c.x, c.y) * (t.depth / cam.depth));
-        mesh.triangles = {{0, 1, 2}};
-        scene.meshes.push_back(mesh);
-    }
-}
-
-}  // namespace
-
-TEST(AnalyticLineSamples, EachRowIsTheExactLengthOfItsLineThatEachSurfaceShows) {
-    // Red triangles at depth 2 over green ones at depth 5 (of one colour none meet; corners far
-    // apart, so edges of
-    // every slope, some crossing whole pixels), black behind: each pixel's red is the mean of the
-    // rows' red lengths, its green the mean of the green lengths less what red hides there.
-    constexpr int kWidth = 24, kHeight = 16;
-    const test::PixelCamera cam{kWidth, kHeight, 3.0f};
-    const std::vector<RasterTriangle> front{{{glm::vec2(2.3f, 1.2f), glm::vec2(9.7f, 14.1f), glm::vec2(13.1f, 3.4f)}, 2.0f},
-                                            {{glm::vec2(15.2f, 2.6f), glm::vec2(22.6f, 5.3f), glm::vec2(16.9f, 11.8f)}, 2.0f}};
-    const std::vector<RasterTriangle> back{{{glm::vec2(5.1f, 9.3f), glm::vec2(21.4f, 14.7f), glm::vec2(19.8f, 0.6f)}, 5.0f},
-                                           {{glm::vec2(0.4f, 6.2f), glm::vec2(4.9f, 15.3f), glm::vec2(4.8f, 2.1f)}, 5.0f}};
-    Scene scene = test::emptyScene();
-    addRasterTriangles(scene, cam, front, test::addMaterial(scene, {1, 0, 0}));
-    addRasterTriangles(scene, cam, back, test::addMaterial(scene, {0, 1, 0}));
-    validateScene(scene);
-    for (const int aa : {1, 2, 3}) {
-        SCOPED_TRACE(aa);
-        const raster::SamplePattern pattern = raster::samplePatternFor(aa, false);
-        RenderStats stats;
-        const Image lines = render("analytic", scene, kWidth, kHeight, withOption("line-samples", "1"), &stats, ShadingMode::Unlit, aa);
-        const Image points = render("analytic", scene, kWidth, kHeight, OptionMap(), nullptr, ShadingMode::Unlit, aa);
-        EXPECT_EQ(stats.counter("line_samples"), 1.0);
-        double lineError = 0.0, pointError = 0.0;
-        for (int py = 0; py < kHeight; ++py)
-            for (int px = 0; px < kWidth; ++px) {
-                glm::vec2 expected(0.0f);  // red, green
-                for (const glm::i64vec2& offset : pattern.offsets) {
-                    const float y = float(py) + float(offset.y) / float(raster::kSubpixelScale);
-                    const float x0 = float(px), x1 = x0 + 1.0f;
-                    // The front triangles do not meet; each back one is what no front one covers.
-                    std::vector<std::pair<float, float>> reds;
-                    for (const RasterTriangle& t : front)
-                        if (const auto c = crossing(t, y)) {
-                            reds.push_back(*c);
-                            expected.x += within(c->first, c->second, x0, x1);
-                        }
-                    for (const RasterTriangle& t : back)
-                        if (const auto c = crossing(t, y)) {
-                            float shown = within(c->first, c->second, x0, x1);
-                            for (const auto& r : reds) shown -= within(std::max(c->first, r.first), std::min(c->second, r.second), x0, x1);
-                            expected.y += shown;
-                        }
-                }
-                expected /= float(pattern.count());
-                const glm::vec3 got = lines.at(px, py), point = points.at(px, py);
-                EXPECT_NEAR(got.x, expected.x, 2e-5f) << px << "," << py;
-                EXPECT_NEAR(got.y, expected.y, 2e-5f) << px << "," << py;
-                lineError = std::max({lineError, double(std::abs(got.x - expected.x)), double(std::abs(got.y - expected.y))});
-                pointError = std::max({pointError, double(std::abs(point.x - expected.x)), double(std::abs(point.y - expected.y))});
-            }
-        // Points at the same rows are not lines: the closed form tells them apart.
-        EXPECT_LT(lineError, 2e-5);
-        EXPECT_GT(pointError, 0.1);
-    }
-}
-
-TEST(AnalyticLineSamples, TilesWithMotionKeepTheirPointSamples) {
-    // A quad sliding 12 pixels in the left tile and a still one in the right tile (tiles are 16
-    // pixels): the sliding tile renders bit for bit as without line samples, the still one does
-    // not (its slanted edge is integrated along x), and a moving camera, whose frame holds no
-    // still segment, renders as without them everywhere.
-    constexpr int kWidth = 32, kHeight = 8;
-    const test::PixelCamera cam{kWidth, kHeight, 3.0f};
-    Scene scene = test::emptyScene();
-    const std::uint32_t white = test::addMaterial(scene, glm::vec3(1.0f));
-    test::addPixelQuad(scene, cam, white, 1.0f, 1.0f, 3.0f, 7.0f, 12.0f, 0.0f);
-    test::addMovingQuad(scene, white, {cam.at(18.0f, 1.0f), cam.at(18.0f, 7.0f), cam.at(29.0f, 7.0f), cam.at(29.0f, 3.5f)},
-                        {cam.at(18.0f, 1.0f), cam.at(18.0f, 7.0f), cam.at(29.0f, 7.0f), cam.at(29.0f, 3.5f)});
-    validateScene(scene);
-    const Image lines = render("analytic", scene, kWidth, kHeight, withOption("line-samples", "1"), nullptr, ShadingMode::Unlit, 2);
-    const Image points = render("analytic", scene, kWidth, kHeight, OptionMap(), nullptr, ShadingMode::Unlit, 2);
-    double leftDifference = 0.0, rightDifference = 0.0;
-    for (int py = 0; py < kHeight; ++py)
-        for (int px = 0; px < kWidth; ++px) {
-            const double d = std::abs(double(lines.at(px, py).x) - double(points.at(px, py).x));
-            (px < 16 ? leftDifference : rightDifference) = std::max(px < 16 ? leftDifference : rightDifference, d);
-        }
-    EXPECT_EQ(leftDifference, 0.0);
-    EXPECT_GT(rightDifference, 0.05);
-
-    Scene moving = scene;
-    moving.camera.close = CameraPose::lookAt(glm::vec3(0.1f, 0.0f, 0.0f), glm::vec3(0.1f, 0.0f, -1.0f));
-    RenderStats stats;
-    const Image movingLines = render("analytic", moving, kWidth, kHeight, withOption("line-samples", "1"), &stats, ShadingMode::Unlit, 2);
-    EXPECT_EQ(psnr(movingLines, render("analytic", moving, kWidth, kHeight, OptionMap(), nullptr, ShadingMode::Unlit, 2)),
-              std::numeric_limits<double>::infinity());
 }
 
 }  // namespace streak
