@@ -43,6 +43,7 @@ public:
         m_spp = spp, m_tileWidth = tileWidth;
         m_farthest.assign(numSamples, std::numeric_limits<float>::infinity());
         m_pixelFarthest.assign(numSamples / std::size_t(spp), std::numeric_limits<float>::infinity());
+        m_runCount.clear();
         if (m_orderOf.data() != items.data() || m_orderOf.size() != items.size()) {
             nearestFirst(items, segments, m_order);
             m_orderOf = items;
@@ -77,6 +78,30 @@ public:
         while (x1 >= x0 && isPixelHidden(x1 - originX, py - originY, nearest)) --x1;
     }
 
+    // An opaque stretch [u0, u1] of a line sample (exposure/line_samples.h) lies no farther than
+    // `farthest`. A line is seldom covered end to end by one small triangle, but often by a
+    // mesh's several: each sample keeps the union of what opaque stretches covered it, up to
+    // kStretchRuns disjoint runs (past that a stretch that meets none is let go: covering less is
+    // only culling less), and once a run spans the line, the sample is covered no farther than
+    // the farthest of the stretches that made it. The resolve's occlusion cull takes the same
+    // union (cullHiddenIntervals), so what this skips it would drop.
+    void coverStretch(std::uint32_t sample, float u0, float u1, float farthest) {
+        if (m_runCount.empty()) m_runCount.assign(m_farthest.size(), 0), m_runs.resize(m_farthest.size() * kStretchRuns);
+        Run merged{u0, u1, farthest};
+        Run* runs = m_runs.data() + std::size_t(sample) * kStretchRuns;
+        std::uint8_t& count = m_runCount[sample];
+        int kept = 0;
+        for (int i = 0; i < count; ++i) {
+            if (runs[i].u0 <= merged.u1 && runs[i].u1 >= merged.u0)
+                merged = {std::min(merged.u0, runs[i].u0), std::max(merged.u1, runs[i].u1), std::max(merged.farthest, runs[i].farthest)};
+            else
+                runs[kept++] = runs[i];
+        }
+        count = std::uint8_t(kept);
+        if (kept < kStretchRuns) runs[count++] = merged;
+        if (merged.u0 <= 0.0f && merged.u1 >= 1.0f) cover(sample, merged.farthest);
+    }
+
     // An opaque interval covers `sample` over the whole shutter, no farther than `farthest`.
     void cover(std::uint32_t sample, float farthest) {
         float& covered = m_farthest[sample];
@@ -88,7 +113,14 @@ public:
     }
 
 private:
+    static constexpr int kStretchRuns = 4;
+    struct Run {
+        float u0, u1, farthest;
+    };
+
     int m_spp = 1, m_tileWidth = 1;
+    std::vector<Run> m_runs;                 ///< per sample of a line tile, kStretchRuns (coverStretch)
+    std::vector<std::uint8_t> m_runCount;    ///< per sample of a line tile; empty until a stretch comes
     std::vector<float> m_farthest;       ///< per sample
     std::vector<float> m_pixelFarthest;  ///< per pixel: the farthest of its samples'
     std::vector<std::uint32_t> m_order;       ///< m_orderOf nearest first

@@ -189,4 +189,48 @@ TEST(LineSamplesMethods, TilesWithMotionKeepTheirPointSamples) {
     }
 }
 
+TEST(LineSamplesMethods, AMeshCoveringALineTogetherHidesWhatLiesBehindItEveryBitKept) {
+    // A red sheet of one-pixel squares, each two triangles, set half a pixel off the pixels so
+    // that no triangle covers any pixel's line end to end, at depth 2 over a green quad at depth
+    // 6, which comes first in the scene. The early cull takes the union of the sheet's stretches
+    // at each line: it skips the quad's samples under the sheet, and every bit stays as without it.
+    constexpr int kWidth = 40, kHeight = 16;
+    const test::PixelCamera cam{kWidth, kHeight, 2.0f};
+    Scene scene = test::emptyScene();
+    const std::uint32_t red = test::addMaterial(scene, {1, 0, 0}), green = test::addMaterial(scene, {0, 1, 0});
+    const test::PixelCamera far{kWidth, kHeight, 6.0f};
+    test::addPixelQuad(scene, far, green, -1.0f, -1.0f, float(kWidth) + 1.0f, float(kHeight) + 1.0f);
+    Mesh sheet;
+    sheet.material = red;
+    sheet.numKeys = 2;  // the same pose at both ends: still
+    constexpr int kCells = kWidth - 1, kRows = 10;
+    for (int key = 0; key < 2; ++key)
+        for (int j = 0; j <= kRows; ++j)
+            for (int i = 0; i <= kCells; ++i) sheet.positions.push_back(cam.at(0.5f + float(i), 3.5f + float(j)));
+    const auto vertex = [&](int i, int j) { return std::uint32_t(j * (kCells + 1) + i); };
+    for (int j = 0; j < kRows; ++j)
+        for (int i = 0; i < kCells; ++i) {
+            sheet.triangles.push_back({vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1)});
+            sheet.triangles.push_back({vertex(i, j), vertex(i + 1, j + 1), vertex(i + 1, j)});
+        }
+    scene.meshes.push_back(sheet);
+    validateScene(scene);
+    for (const char* method : kLineMethods) {
+        SCOPED_TRACE(method);
+        OptionMap lines = withOption("line-samples", "1"), unculled = withOption("line-samples", "1");
+        unculled.set("early-cull", "0");
+        RenderStats culledStats, unculledStats;
+        const Image culled = render(method, scene, kWidth, kHeight, lines, &culledStats, ShadingMode::Unlit, 2);
+        const Image all = render(method, scene, kWidth, kHeight, unculled, &unculledStats, ShadingMode::Unlit, 2);
+        EXPECT_EQ(psnr(culled, all), std::numeric_limits<double>::infinity());
+        EXPECT_EQ(culledStats.counter("line_samples"), 1.0);
+        // The quad's samples under the sheet's rows: (kRows - 1) pixel rows wholly under it.
+        EXPECT_GE(culledStats.counter("samples_hidden_before_solving"), double((kRows - 1) * (kCells - 1) * 4));
+        EXPECT_EQ(unculledStats.counter("samples_hidden_before_solving"), 0.0);
+        // And the sheet is red where it lies, the quad green around it.
+        EXPECT_NEAR(culled.at(20, 8).x, 1.0f, 1e-5f);
+        EXPECT_NEAR(culled.at(20, 1).y, 1.0f, 1e-5f);
+    }
+}
+
 }  // namespace streak

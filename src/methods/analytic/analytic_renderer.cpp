@@ -244,8 +244,7 @@ private:
                     r.interval.depth0 = stretch.depth0, r.interval.depth1 = stretch.depth1;
                     r.interval.source = index;
                     scratch.records.push_back(r);
-                    if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
-                        scratch.earlyCull.cover(sample, std::max(r.interval.depth0, r.interval.depth1));
+                    if (isOccluder) scratch.earlyCull.coverStretch(sample, stretch.u0, stretch.u1, std::max(stretch.depth0, stretch.depth1));
                 });
                 counters.samplesCulled += (open1 - open0 + 1) - covered;
             }

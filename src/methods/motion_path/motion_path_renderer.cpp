@@ -390,13 +390,15 @@ private:
     }
 
     // A still path's fragments in a line tile (exposure/line_samples.h): each sample of the
-    // rows of `scan` whose line it covers; and, where it covers the line end to end, opaque,
-    // the early cull's mark there.
+    // rows of `scan` whose line it covers; and, opaque, its stretch there for the early cull.
     static void rasterizeLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& scan, std::uint32_t index,
                                bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
         const exposure::TriangleSegment& path = frame.paths[index];
         if (path.orientation == 0) return;  // edge-on: no area
         const raster::MovingTriangle& still = scratch.movingTriangles.get(frame.segmented, index);
+        // Seen from behind and single-sided: no interval anywhere (the build would cull each), so
+        // no fragment, and above all no cover of the early cull.
+        if (!frame.geometry.triangles()[path.triangle].isDoubleSided && !still.isFrontFacing(0.5)) return;
         const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, width = frame.viewport.width;
         for (int py = scan.y0; py <= scan.y1; ++py) {
             int open0 = scan.x0, open1 = scan.x1;
@@ -414,8 +416,7 @@ private:
                         return;
                     }
                     scratch.fragments.push_back({sample, index, path.nearness});
-                    if (isOccluder && stretch.u0 == 0.0f && stretch.u1 == 1.0f)
-                        scratch.earlyCull.cover(sample, std::max(stretch.depth0, stretch.depth1));
+                    if (isOccluder) scratch.earlyCull.coverStretch(sample, stretch.u0, stretch.u1, std::max(stretch.depth0, stretch.depth1));
                 });
             }
         }
