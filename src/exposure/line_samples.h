@@ -1,8 +1,10 @@
 #pragma once
 
+#include "exposure/early_cull.h"
 #include "exposure/segmented_geometry.h"
 #include "exposure/shading_site.h"
 #include "raster/moving_triangle.h"
+#include "raster/sample_pattern.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +53,48 @@ void forEachLineStretch(const raster::MovingTriangle& still, int orientation, do
         if (!s0.isValid || !s1.isValid) continue;
         visit(px, LineStretch{float(u0), float(u1), float(s0.viewDepth), float(s1.viewDepth)});
     }
+}
+
+// A still segment's stretches in a line tile: over the pattern's rows of the pixels `region`
+// of the tile `rect` (samples counted pixel-major, the pattern's minor, as TileRecord::sample),
+// each stretch it covers as visit(sample, LineStretch). With `cull` (the tile's early cull, the
+// segment's nearest depth `nearest`), the pixels and samples hidden from it are skipped and
+// counted in `hidden`, and where `isOccluder` (opaque) its stretches cover (coverStretch).
+// Returns false, visiting nothing, where a single-sided triangle is seen from behind (no
+// interval anywhere, and above all no cover); an edge-on one (no area) visits nothing. `missed`
+// counts the rows' pixels whose lines it does not cover.
+template <class Visit>
+bool forEachTileLineStretch(const raster::MovingTriangle& still, const TriangleSegment& segment, bool isDoubleSided,
+                            const raster::PixelBounds& rect, const raster::PixelBounds& region, const raster::SamplePattern& pattern,
+                            const raster::Viewport& viewport, EarlyCull* cull, float nearest, bool isOccluder, std::int64_t& hidden,
+                            std::int64_t& missed, Visit&& visit) {
+    if (segment.orientation == 0) return true;
+    if (!isDoubleSided && !still.isFrontFacing(0.5)) return false;
+    const int spp = pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, boxWidth = region.x1 - region.x0 + 1;
+    for (int py = region.y0; py <= region.y1; ++py) {
+        int open0 = region.x0, open1 = region.x1;
+        if (cull) {
+            cull->openRow(py, rect.x0, rect.y0, nearest, open0, open1);
+            hidden += std::int64_t(boxWidth - std::max(0, open1 - open0 + 1)) * spp;
+            if (open0 > open1) continue;
+        }
+        for (int s = 0; s < spp; ++s) {
+            const double y = pattern.ndcOf(region.x0, py, s, viewport.width, viewport.height).y;
+            int covered = 0;
+            forEachLineStretch(still, segment.orientation, y, open0, open1, viewport.width, [&](int px, const LineStretch& stretch) {
+                ++covered;
+                const auto sample = std::uint32_t((std::size_t(py - rect.y0) * std::size_t(tileWidth) + std::size_t(px - rect.x0)) * spp + s);
+                if (cull && cull->isHidden(sample, nearest)) {
+                    ++hidden;
+                    return;
+                }
+                visit(sample, stretch);
+                if (isOccluder) cull->coverStretch(sample, stretch.u0, stretch.u1, std::max(stretch.depth0, stretch.depth1));
+            });
+            missed += (open1 - open0 + 1) - covered;
+        }
+    }
+    return true;
 }
 
 // The stretch of the line through the sample at `ndc` (its pixel's) that the still triangle

@@ -204,53 +204,6 @@ private:
         return false;
     }
 
-    // A still segment's records in a line tile (renderRect, exposure/line_samples.h): for each
-    // sample row of its box, the stretch of each pixel's line it covers, its times the ends'
-    // shares of the pixel's width.
-    static void visitLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& region, std::uint32_t index,
-                           const raster::MovingTriangle& moving, bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
-        const exposure::TriangleSegment& segment = frame.segmented->segments()[index];
-        const FlatTriangle& tri = frame.segmented->flat().triangles()[segment.triangle];
-        Counters& counters = scratch.counters;
-        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, boxWidth = region.x1 - region.x0 + 1;
-        // Edge-on (no area), or seen from behind by a single-sided triangle: nothing on any line.
-        if (segment.orientation == 0) return;
-        if (!tri.isDoubleSided && !moving.isFrontFacing(0.5)) {
-            ++counters.culledBackFacing;
-            return;
-        }
-        for (int py = region.y0; py <= region.y1; ++py) {
-            const auto rowFirst = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (region.x0 - rect.x0)) * spp);
-            int open0 = region.x0, open1 = region.x1;
-            if (isCullingEarly) {
-                scratch.earlyCull.openRow(py, rect.x0, rect.y0, nearest, open0, open1);
-                counters.samplesHidden += std::int64_t(boxWidth - std::max(0, open1 - open0 + 1)) * spp;
-                if (open0 > open1) continue;
-            }
-            for (int s = 0; s < spp; ++s) {
-                const double y = scratch.sampleNdc[rowFirst + std::uint32_t(s)].y;
-                int covered = 0;
-                exposure::forEachLineStretch(moving, segment.orientation, y, open0, open1, frame.viewport.width,
-                                             [&](int px, const exposure::LineStretch& stretch) {
-                    ++covered;
-                    const auto sample = std::uint32_t(rowFirst + std::uint32_t((px - region.x0) * spp + s));
-                    if (isCullingEarly && scratch.earlyCull.isHidden(sample, nearest)) {
-                        ++counters.samplesHidden;
-                        return;
-                    }
-                    exposure::TileRecord r;
-                    r.sample = sample;
-                    r.interval.t0 = stretch.u0, r.interval.t1 = stretch.u1;
-                    r.interval.depth0 = stretch.depth0, r.interval.depth1 = stretch.depth1;
-                    r.interval.source = index;
-                    scratch.records.push_back(r);
-                    if (isOccluder) scratch.earlyCull.coverStretch(sample, stretch.u0, stretch.u1, std::max(stretch.depth0, stretch.depth1));
-                });
-                counters.samplesCulled += (open1 - open0 + 1) - covered;
-            }
-        }
-    }
-
     // The pixels of rect, within a tile whose segments are `items` (exposure::renderExactTile);
     // false, with the image left alone, once its records pass maxRecords (a single pixel cuts
     // them instead).
@@ -312,7 +265,18 @@ private:
             const FlatTriangle& tri = triangles[segment.triangle];
             const bool isOccluder = isCullingEarly && !scene.materials[tri.material].isTranslucent();
             if (scratch.isLineTile) {
-                visitLines(frame, rect, region, index, moving, isOccluder, nearest, isCullingEarly, scratch);
+                // The stretches of its rows' lines it covers, as records (exposure/line_samples.h).
+                const bool isSeen = exposure::forEachTileLineStretch(
+                    moving, segment, tri.isDoubleSided, rect, region, frame.pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr,
+                    nearest, isOccluder, counters.samplesHidden, counters.samplesCulled, [&](std::uint32_t sample, const exposure::LineStretch& stretch) {
+                        exposure::TileRecord r;
+                        r.sample = sample;
+                        r.interval.t0 = stretch.u0, r.interval.t1 = stretch.u1;
+                        r.interval.depth0 = stretch.depth0, r.interval.depth1 = stretch.depth1;
+                        r.interval.source = index;
+                        scratch.records.push_back(r);
+                    });
+                counters.culledBackFacing += !isSeen;
                 continue;
             }
             // Depth on the triangle is a convex combination of its corners' depths, so only a

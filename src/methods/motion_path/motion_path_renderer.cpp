@@ -389,39 +389,6 @@ private:
         out.push_back(interval);
     }
 
-    // A still path's fragments in a line tile (exposure/line_samples.h): each sample of the
-    // rows of `scan` whose line it covers; and, opaque, its stretch there for the early cull.
-    static void rasterizeLines(const Frame& frame, const raster::PixelBounds& rect, const raster::PixelBounds& scan, std::uint32_t index,
-                               bool isOccluder, float nearest, bool isCullingEarly, TileScratch& scratch) {
-        const exposure::TriangleSegment& path = frame.paths[index];
-        if (path.orientation == 0) return;  // edge-on: no area
-        const raster::MovingTriangle& still = scratch.movingTriangles.get(frame.segmented, index);
-        // Seen from behind and single-sided: no interval anywhere (the build would cull each), so
-        // no fragment, and above all no cover of the early cull.
-        if (!frame.geometry.triangles()[path.triangle].isDoubleSided && !still.isFrontFacing(0.5)) return;
-        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1, width = frame.viewport.width;
-        for (int py = scan.y0; py <= scan.y1; ++py) {
-            int open0 = scan.x0, open1 = scan.x1;
-            if (isCullingEarly) {
-                scratch.earlyCull.openRow(py, rect.x0, rect.y0, nearest, open0, open1);
-                scratch.counters.samplesHidden += std::int64_t(scan.x1 - scan.x0 + 1 - std::max(0, open1 - open0 + 1)) * spp;
-                if (open0 > open1) continue;
-            }
-            for (int s = 0; s < spp; ++s) {
-                const double y = frame.pattern.ndcOf(scan.x0, py, s, width, frame.viewport.height).y;
-                exposure::forEachLineStretch(still, path.orientation, y, open0, open1, width, [&](int px, const exposure::LineStretch& stretch) {
-                    const auto sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                    if (isCullingEarly && scratch.earlyCull.isHidden(sample, nearest)) {
-                        ++scratch.counters.samplesHidden;
-                        return;
-                    }
-                    scratch.fragments.push_back({sample, index, path.nearness});
-                    if (isOccluder) scratch.earlyCull.coverStretch(sample, stretch.u0, stretch.u1, std::max(stretch.depth0, stretch.depth1));
-                });
-            }
-        }
-    }
-
     // NDC of sample i of a tile (pixel-major, pattern position minor).
     static glm::dvec2 sampleNdc(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
         const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
@@ -538,8 +505,15 @@ private:
             // would find its interval there.
             const FlatTriangle& tri = frame.geometry.triangles()[segment.triangle];
             if (scratch.isLineTile) {
-                rasterizeLines(frame, rect, scan, index, isCullingEarly && !frame.scene.materials[tri.material].isTranslucent(), nearest, isCullingEarly,
-                               scratch);
+                // A still path's fragments are the samples whose lines it covers (no faces;
+                // exposure/line_samples.h); seen from behind and single-sided, none.
+                std::int64_t missed = 0;
+                exposure::forEachTileLineStretch(scratch.movingTriangles.get(frame.segmented, index), segment, tri.isDoubleSided, rect, scan,
+                                                 frame.pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr, nearest,
+                                                 isCullingEarly && !frame.scene.materials[tri.material].isTranslucent(), counters.samplesHidden,
+                                                 missed, [&](std::uint32_t sample, const exposure::LineStretch&) {
+                    scratch.fragments.push_back({sample, index, segment.nearness});
+                });
                 continue;
             }
             const raster::MovingTriangle* still = nullptr;
