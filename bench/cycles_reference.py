@@ -18,8 +18,10 @@ out as glTF first) as streak's `--shading unlit --background 0,0,0` would show i
   - streak's shutter: the animation time [F/R, (F+S)/R] seconds of `--frame F --shutter S --fps R`
     (Cycles' motion blur position START, shutter in Blender frames), widened by the part of it
     Cycles' ray times miss (measured each run, `calibrate_shutter`: Blender 3.4 covers only
-    [0, 0.9922] of its shutter); motion steps `--motion-steps` (6: Cycles samples 2^6 + 1 = 65
-    transforms and deformed meshes over the shutter);
+    [0, 0.9922] of its shutter); motion steps `--motion-steps` (7, Cycles' most: 2^(7-1) = 64
+    even steps of transforms and deformed meshes over the shutter, linear between them; 6 gave
+    32, as many as streak's 33 chosen keys, whose 0.1 px from MorphStressTest's true morph the
+    reference then shared);
   - the animation streak plays (`--animation`, the first by default), as glTF defines it:
     CUBICSPLINE samplers and LINEAR rotations, which Blender's importer keys differently
     (automatic Bezier handles; component-wise quaternion lerp), resampled into dense LINEAR keys
@@ -29,7 +31,7 @@ Usage:
   bench/cycles_reference.py SCENE [--frame F --shutter S --fps R --animation A] [--camera I |
       --camera-pos=x,y,z --camera-target x,y,z ...] [--width 320 --height 240]
       [--spp 1024 | --spp 16,32,64,1024] [--out DIR] [--streak build/streak] [--blender blender]
-      [--threads N] [--seed N] [--motion-steps 6] [--srgb-filtering] [--verbose] [--passes]
+      [--threads N] [--seed N] [--motion-steps 7] [--srgb-filtering] [--verbose] [--passes]
 Writes DIR/cycles-<spp>.exr (linear float) per spp, DIR/cycles.json (seconds per render, the
 camera, the shutter in Blender frames) and DIR/blender.log. Compare with streak rendered
 `--shading unlit --background 0,0,0` and the same scene flags: `streak compare`. The script also
@@ -46,6 +48,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+# Cycles' motion steps per object: 2^(steps - 1) even steps over the shutter; 7 is its most.
+MOTION_STEPS = 7
 
 CAMERA_FLAGS = ["--camera", "--camera-pos", "--camera-target", "--camera-up", "--camera-pos-end",
                 "--camera-target-end", "--fov"]
@@ -270,7 +275,7 @@ def blender_environment():
 
 
 def render(scene, scene_args, spp_list, out_dir, streak=STREAK, blender="blender", width=320, height=240,
-           frame=0.0, shutter=0.5, fps=24.0, animation=None, threads=0, seed=0, motion_steps=6, linear_textures=True,
+           frame=0.0, shutter=0.5, fps=24.0, animation=None, threads=0, seed=0, motion_steps=MOTION_STEPS, linear_textures=True,
            quiet=True, passes=False):
     """Renders `scene` with Cycles at every spp of `spp_list` (each with its own seed, so their
     noise is independent). Returns {spp: {"path": exr, "seconds": render time}} and writes it,
@@ -712,7 +717,7 @@ def main():
     parser.add_argument("--spp", default="1024", help="samples per pixel, or a comma-separated ladder")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--threads", type=int, default=0, help="Cycles threads (0: all cores)")
-    parser.add_argument("--motion-steps", type=int, default=6, help="Cycles motion steps per object (1-7)")
+    parser.add_argument("--motion-steps", type=int, default=MOTION_STEPS, help="Cycles motion steps per object (1-7: 2^(steps-1) steps)")
     parser.add_argument("--srgb-filtering", action="store_true",
                         help="keep 8-bit textures as Blender loads them (Cycles filters them in sRGB, before decoding)")
     parser.add_argument("--verbose", action="store_true", help="show Blender's output")

@@ -161,7 +161,8 @@ def model_renders(args, name, path, flags, ladder_spp):
     os.makedirs(out, exist_ok=True)
     spp_list = ladder_spp + [args.spp]
     job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
-           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation")}
+           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation"),
+           "motion_steps": cycles_reference.MOTION_STEPS}
     if is_builtin:  # the shutter as cycles_reference.render exports it: the first second, at 24 fps
         job.update(frame=0.0, shutter=24.0)
     renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None

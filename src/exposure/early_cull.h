@@ -28,7 +28,8 @@ inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const T
 // (cullHiddenIntervals) would drop each of its intervals, an opaque interval over [0, 1] wholly
 // nearer hiding it. So a method may skip such a sample, and a pixel whose every sample is so
 // covered, without changing any image. It pays where segments come nearest first
-// (nearestFirst), and only where a segment can cover the whole shutter (one segment a triangle).
+// (nearestFirst), and only where a segment can cover the whole shutter (one segment a triangle,
+// or a merged run of them: SegmentedGeometry::hasWholeShutterSegments).
 //
 // Samples are a tile's (or a piece of it), pixel-major with the pattern's samples minor, as
 // TileRecord::sample counts them.
@@ -78,9 +79,10 @@ public:
         while (x1 >= x0 && isPixelHidden(x1 - originX, py - originY, nearest)) --x1;
     }
 
-    // An opaque stretch [u0, u1] of a line sample (exposure/line_samples.h) lies no farther than
-    // `farthest`. A line is seldom covered end to end by one small triangle, but often by a
-    // mesh's several: each sample keeps the union of what opaque stretches covered it, up to
+    // An opaque stretch [u0, u1] of a line sample (exposure/line_samples.h), or an opaque
+    // interval of a point sample over part of the shutter, lies no farther than `farthest`. A
+    // line is seldom covered end to end by one small triangle, nor a shutter by one moving
+    // triangle, but often by a mesh's several in turn: each sample keeps the union of what opaque stretches covered it, up to
     // kStretchRuns disjoint runs (past that a stretch that meets none is let go: covering less is
     // only culling less), and once a run spans the line, the sample is covered no farther than
     // the farthest of the stretches that made it. The resolve's occlusion cull takes the same
@@ -101,6 +103,12 @@ public:
         if (kept < kStretchRuns) runs[count++] = merged;
         if (merged.u0 <= 0.0f && merged.u1 >= 1.0f) cover(sample, merged.farthest);
     }
+
+    // The shortest part of the shutter a moving surface's interval may cover a sample over to
+    // be kept in its union (coverStretch): a surface that sweeps the sample in many short pieces
+    // (a dense mesh under a camera move) scatters the union past its runs, and keeping them
+    // would cost more than the cull saves.
+    static constexpr float kShortestStretch = 1.0f / 16.0f;
 
     // An opaque interval covers `sample` over the whole shutter, no farther than `farthest`.
     void cover(std::uint32_t sample, float farthest) {

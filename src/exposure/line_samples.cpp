@@ -3,13 +3,13 @@
 namespace streak::exposure {
 
 bool lineSamplingAllowed(const Scene& scene, const SegmentedGeometry& segmented) {
-    return segmented.numSegments() == 1 && scene.shutter.isBox();
+    return segmented.hasWholeShutterSegments() && scene.shutter.isBox();
 }
 
 bool isLineTile(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, double zNear) {
     return std::all_of(items.begin(), items.end(), [&](std::uint32_t index) {
         const TriangleSegment& s = segments[index];
-        return s.clip0 == s.clip1 && s.isInFront() && double(s.nearness) <= 1.0 / zNear;
+        return s.t0 == 0.0f && s.t1 == 1.0f && s.clip0 == s.clip1 && s.isInFront() && double(s.nearness) <= 1.0 / zNear;
     });
 }
 

@@ -21,9 +21,10 @@ namespace streak::exposure {
 // visibility along the line, and a piece's weight the share of the line it shows: an edge is
 // integrated across the pixel, and sampled only where it crosses the pattern's N^2 rows.
 //
-// It needs a still frame's time to be free: one segment a triangle and every time weighed alike
-// (a box shutter, no rolling), which lineSamplingAllowed says of a frame, and a tile whose every
-// segment is still and wholly in front of the near plane, which isLineTile says of a tile.
+// It needs a still frame's time to be free: every time weighed alike (a box shutter, no rolling)
+// and segments that span the shutter, which lineSamplingAllowed says of a frame, and a tile whose
+// every segment spans the shutter, still and wholly in front of the near plane, which isLineTile
+// says of a tile. (A triangle still over several keys is one merged segment: SegmentedGeometry.)
 // The early cull holds as it is: a line covered end to end hides what lies behind it there.
 bool lineSamplingAllowed(const Scene& scene, const SegmentedGeometry& segmented);
 bool isLineTile(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, double zNear);

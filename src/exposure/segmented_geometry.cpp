@@ -20,6 +20,9 @@ namespace {
 // many, so that the choice costs no more on a dense mesh than on a small one.
 constexpr std::size_t kMaxProbeVertices = 4096;
 constexpr double kSeenNdc = 1.5;
+// How far a merged segment may turn a corner's normal from its key's (radians): a thousandth of
+// a radian changes a diffuse term by a thousandth, under what an 8-bit image can hold.
+constexpr double kMergeNormalRadians = 1e-3;
 
 // The largest screen distance, in pixels of a viewport.height tall image, between a probed
 // vertex's true position at the middle of each of numSegments even pieces of the shutter (its
@@ -63,6 +66,17 @@ double pieceDeviation(const Scene& scene, const raster::Viewport& viewport, int 
     return worst;
 }
 
+// A segment's facing from its ends' clip corners (TriangleSegment::orientation), once nearness is set.
+void orient(TriangleSegment& s, bool isDoubleSided) {
+    s.orientation = 0;
+    if (s.isInFront()) {
+        if (raster::isBackFacingThroughout(s.clip0, s.clip1)) s.orientation = -1;
+        // Swapping two corners flips the orientation: back facing that way is front facing.
+        else if (raster::isBackFacingThroughout({s.clip0[0], s.clip0[2], s.clip0[1]}, {s.clip1[0], s.clip1[2], s.clip1[1]})) s.orientation = 1;
+    }
+    s.isBackFacingThroughout = !isDoubleSided && s.orientation < 0;
+}
+
 }  // namespace
 
 SegmentedGeometry::SegmentPlan SegmentedGeometry::plan(const Scene& scene, int curveSegments, const raster::Viewport& viewport) {
@@ -87,7 +101,8 @@ SegmentedGeometry::SegmentPlan SegmentedGeometry::plan(const Scene& scene, int c
     return plan;
 }
 
-SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments) : m_flat(scene) {
+SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments, double mergeTolerancePixels)
+    : m_flat(scene) {
     m_plan = plan(scene, curveSegments, viewport);
     m_numSegments = m_plan.numSegments;
     const float aspect = float(viewport.width) / float(viewport.height);
@@ -103,9 +118,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
     });
     const auto& triangles = m_flat.triangles();
     m_segments.resize(triangles.size() * std::size_t(n));
-    std::atomic<std::int64_t> backFacing{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_segments.size(), 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-        std::int64_t localBackFacing = 0;
         for (std::size_t p = range.begin(); p != range.end(); ++p) {
             const std::uint32_t tri = std::uint32_t(p / std::size_t(n));
             const std::size_t k = p % std::size_t(n);
@@ -113,6 +126,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
             s.triangle = tri;
             s.t0 = float(k) / float(n);
             s.t1 = float(k + 1) / float(n);
+            s.key0 = std::uint16_t(k), s.key1 = std::uint16_t(k + 1);
             const glm::uvec3 v = triangles[tri].vertices;
             float minW = std::numeric_limits<float>::max();
             for (int i = 0; i < 3; ++i) {
@@ -121,32 +135,92 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
                 minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
             }
             s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
-            if (s.isInFront()) {
-                if (raster::isBackFacingThroughout(s.clip0, s.clip1)) s.orientation = -1;
-                // Swapping two corners flips the orientation: back facing that way is front facing.
-                else if (raster::isBackFacingThroughout({s.clip0[0], s.clip0[2], s.clip0[1]}, {s.clip1[0], s.clip1[2], s.clip1[1]})) s.orientation = 1;
-            }
-            s.isBackFacingThroughout = !triangles[tri].isDoubleSided && s.orientation < 0;
-            localBackFacing += s.isBackFacingThroughout;
+            orient(s, triangles[tri].isDoubleSided);
         }
+    });
+    if (n > 1 && mergeTolerancePixels > 0.0) mergeLinearRuns(viewport, mergeTolerancePixels);
+    std::atomic<std::int64_t> backFacing{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_segments.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+        std::int64_t localBackFacing = 0;
+        for (std::size_t p = range.begin(); p != range.end(); ++p) localBackFacing += m_segments[p].isBackFacingThroughout && !isMergedAway(p);
         backFacing += localBackFacing;
     });
     m_numBackFacing = backFacing.load();
+    m_hasWholeShutterSegments = n == 1 || std::any_of(m_segments.begin(), m_segments.end(), [](const TriangleSegment& s) { return s.t0 == 0.0f && s.t1 == 1.0f; });
+}
+
+void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels) {
+    const std::size_t n = std::size_t(m_numSegments);
+    const auto& triangles = m_flat.triangles();
+    const glm::dvec2 halfSize(0.5 * viewport.width, 0.5 * viewport.height);
+    // Whether key pose `middle` of corner v lies on the straight path from key a to key b, at
+    // its time: on screen within the tolerance, in view depth to 1e-6 of its size, its normal's
+    // direction within kMergeNormalRadians. Clip space moves linearly between a segment's ends (so does the normal), so
+    // a merged segment puts the corner at the linear mix of its ends' clip positions.
+    auto isOnPath = [&](const glm::vec4& clipA, const glm::vec4& clipMiddle, const glm::vec4& clipB, std::uint32_t vertex, std::size_t a,
+                        std::size_t middle, std::size_t b) {
+        const double u = double(middle - a) / double(b - a);
+        const glm::dvec4 mixed = glm::mix(glm::dvec4(clipA), glm::dvec4(clipB), u), truth(clipMiddle);
+        if (clipA == clipMiddle && clipMiddle == clipB) return m_normals[a][vertex] == m_normals[middle][vertex] && m_normals[middle][vertex] == m_normals[b][vertex];
+        if (!(mixed.w > 0.0 && truth.w > 0.0)) return false;
+        const glm::dvec2 off = (glm::dvec2(mixed) / mixed.w - glm::dvec2(truth) / truth.w) * halfSize;
+        if (!(std::abs(off.x) <= tolerancePixels && std::abs(off.y) <= tolerancePixels && std::abs(mixed.w - truth.w) <= 1e-6 * truth.w)) return false;
+        // Shading takes the normal's direction: a mesh's normals are unit length at each key
+        // (a morph's or a skin's renormalized), and the mix of two, normalized, points at most
+        // kMergeNormalRadians away from the key's own.
+        const glm::dvec3 normal = glm::mix(glm::dvec3(m_normals[a][vertex]), glm::dvec3(m_normals[b][vertex]), u);
+        const glm::dvec3 normalTruth(m_normals[middle][vertex]);
+        const double lengths = glm::length(normal) * glm::length(normalTruth);
+        if (!(lengths > 0.0)) return normal == normalTruth;
+        return glm::length(glm::cross(normal, normalTruth)) <= kMergeNormalRadians * lengths && glm::dot(normal, normalTruth) > 0.0;
+    };
+    std::atomic<std::int64_t> mergedAway{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
+        std::int64_t localMerged = 0;
+        for (std::size_t tri = range.begin(); tri != range.end(); ++tri) {
+            TriangleSegment* slots = &m_segments[tri * n];
+            const glm::uvec3 v = triangles[tri].vertices;
+            // Whether the run of slots a..b (key poses a..b + 1) is one straight path: every key
+            // pose between its ends on it, for each corner.
+            auto isLinear = [&](std::size_t a, std::size_t b) {
+                for (std::size_t middle = a + 1; middle <= b; ++middle)
+                    for (int i = 0; i < 3; ++i)
+                        if (!isOnPath(slots[a].clip0[i], slots[middle].clip0[i], slots[b].clip1[i], v[i], a, middle, b + 1)) return false;
+                return true;
+            };
+            for (std::size_t a = 0; a < n;) {
+                std::size_t b = a;
+                while (b + 1 < n && isLinear(a, b + 1)) ++b;
+                if (b > a) {
+                    TriangleSegment merged = slots[a];
+                    merged.t1 = slots[b].t1, merged.clip1 = slots[b].clip1, merged.key1 = slots[b].key1;
+                    float minW = std::numeric_limits<float>::max();
+                    for (int i = 0; i < 3; ++i) minW = std::min({minW, merged.clip0[i].w, merged.clip1[i].w});
+                    merged.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
+                    orient(merged, triangles[tri].isDoubleSided);
+                    for (std::size_t k = a; k <= b; ++k) slots[k] = merged;
+                    localMerged += std::int64_t(b - a);
+                }
+                a = b + 1;
+            }
+        }
+        mergedAway += localMerged;
+    });
+    m_numMergedAway = mergedAway.load();
 }
 
 const TriangleSegment& SegmentedGeometry::segmentAt(std::uint32_t triangle, float t) const {
-    return segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1));
+    return segment(triangle, segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1)).key0);
 }
 
 SegmentedGeometry::WorldCorners SegmentedGeometry::cornersOf(const TriangleSegment& segment) const {
-    // Only this geometry's own segments carry their index in their address.
-    assert(&segment >= m_segments.data() && &segment < m_segments.data() + m_segments.size());
-    const std::size_t k = std::size_t(&segment - m_segments.data()) % std::size_t(m_numSegments);
+    const std::size_t k0 = segment.key0, k1 = segment.key1;
+    assert(k1 <= std::size_t(m_numSegments) && k0 < k1);
     const glm::uvec3 v = m_flat.triangles()[segment.triangle].vertices;
     WorldCorners c;
     for (int i = 0; i < 3; ++i) {
-        c.world0[i] = m_positions[k][v[i]], c.world1[i] = m_positions[k + 1][v[i]];
-        c.normal0[i] = m_normals[k][v[i]], c.normal1[i] = m_normals[k + 1][v[i]];
+        c.world0[i] = m_positions[k0][v[i]], c.world1[i] = m_positions[k1][v[i]];
+        c.normal0[i] = m_normals[k0][v[i]], c.normal1[i] = m_normals[k1][v[i]];
     }
     return c;
 }
@@ -156,7 +230,7 @@ std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::V
     tbb::parallel_for(std::size_t(0), m_segments.size(), [&](std::size_t i) {
         const TriangleSegment& s = m_segments[i];
         raster::PixelBounds& b = bounds[i];
-        if (s.isBackFacingThroughout) return;  // empty
+        if (s.isBackFacingThroughout || isMergedAway(i)) return;  // empty
         if (!s.isInFront()) {
             b = {0, 0, viewport.width - 1, viewport.height - 1};
             return;
@@ -170,6 +244,12 @@ std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::V
         b = raster::pixelBoundsOfRaster(lo, hi, viewport);
     });
     return bounds;
+}
+
+void recordSegments(RenderStats& stats, const SegmentedGeometry& segmented) {
+    stats.setCounter("segments_per_triangle", segmented.numSegments());
+    stats.setCounter("segments_merged", double(segmented.numMergedAway()));
+    recordSegmentPlan(stats, segmented.segmentPlan());
 }
 
 void recordSegmentPlan(RenderStats& stats, const SegmentedGeometry::SegmentPlan& plan) {

@@ -27,6 +27,11 @@ struct TriangleSegment {
     float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
     std::int8_t orientation = 0;                     ///< +1 front facing throughout, -1 back facing throughout, 0 turns over (or reaches behind the eye)
     bool isBackFacingThroughout = false;             ///< single-sided and seen from behind at every time: never visible
+    // Its ends as segment ends k / numSegments: key1 = key0 + 1, or more where the triangle's
+    // motion stays linear over several segments and they are merged into one
+    // (SegmentedGeometry, kMergeTolerancePixels). Every slot of a merged run holds the merged
+    // segment; the slot at key0 is the one binned and solved.
+    std::uint16_t key0 = 0, key1 = 1;
 
     // A shutter time as the segment's parameter u in [0, 1].
     double localTime(float t) const { return t1 > t0 ? (double(t) - t0) / (double(t1) - t0) : 0.0; }
@@ -48,6 +53,11 @@ public:
     // image's height, a linear piece may stray from a vertex's curved screen path.
     static constexpr double kCurveTolerancePixels = 0.125;
     static constexpr int kMaxCurveSegments = 64;
+    // How far (pixels) a triangle's corners may stray, at the segment ends a merge drops, from
+    // the merged segment's straight screen path: float rounding, and nothing an image can show
+    // (a vertex a thousandth of a pixel off). View depth is held to 1e-6 of its size, a normal's
+    // direction to a thousandth of a radian. 0: no merging.
+    static constexpr double kMergeTolerancePixels = 1e-3;
 
     // How a scene's motion is cut: numSegments linear segments over the shutter, piecesPerKey of
     // them per key segment, and the largest screen distance (pixels) measured between a probed
@@ -60,7 +70,13 @@ public:
     };
     static SegmentPlan plan(const Scene& scene, int curveSegments, const raster::Viewport& viewport);
 
-    SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments);
+    // Segments of a triangle whose corners (clip space and normals) move along one line at one
+    // pace through the joints between them are merged into one (mergeTolerancePixels; 0: none).
+    // Keys are shared by every vertex of a scene, so a morph or a skinned mesh is cut everywhere
+    // its fastest-changing vertices need; its still parts and its parts moving linearly need
+    // one segment, which also lets them cover the whole shutter (the early cull, line samples).
+    SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments,
+                      double mergeTolerancePixels = kMergeTolerancePixels);
 
     const SegmentPlan& segmentPlan() const { return m_plan; }
     const Scene& scene() const { return m_flat.scene(); }
@@ -70,8 +86,16 @@ public:
     const TriangleSegment& segment(std::uint32_t triangle, int s) const {
         return m_segments[std::size_t(triangle) * std::size_t(m_numSegments) + std::size_t(s)];
     }
-    // The segment of a triangle holding shutter time t.
+    // The segment of a triangle holding shutter time t (a merged run's first slot).
     const TriangleSegment& segmentAt(std::uint32_t triangle, float t) const;
+    // True for a slot merged into an earlier one: it is never binned (an empty screen box).
+    bool isMergedAway(std::size_t index) const { return m_segments[index].key0 != index % std::size_t(m_numSegments); }
+    // Slots merged into an earlier one, over the whole scene.
+    std::int64_t numMergedAway() const { return m_numMergedAway; }
+    // True where some segment spans the whole shutter (one segment a triangle, or a merged
+    // run): only such a segment can cover a sample all the shutter (the early cull) or stay
+    // still all of it (line samples).
+    bool hasWholeShutterSegments() const { return m_hasWholeShutterSegments; }
     // A segment's corners in world space at its start and end, and their normals (zero for
     // meshes without normals).
     struct WorldCorners {
@@ -93,9 +117,15 @@ private:
     std::vector<TriangleSegment> m_segments;
     std::vector<std::vector<glm::vec3>> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
+    std::int64_t m_numMergedAway = 0;
+    bool m_hasWholeShutterSegments = false;
+
+    void mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels);
 };
 
-// --stats: curve_segments (pieces per key segment) and, where measured, curve_deviation_px.
+// --stats: segments_per_triangle (the plan's), curve_segments (pieces per key segment), where
+// measured curve_deviation_px, and segments_merged (slots merged into an earlier one).
+void recordSegments(RenderStats& stats, const SegmentedGeometry& segmented);
 void recordSegmentPlan(RenderStats& stats, const SegmentedGeometry::SegmentPlan& plan);
 
 }  // namespace streak::exposure

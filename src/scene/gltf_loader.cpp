@@ -797,6 +797,24 @@ private:
                 }
                 keys = std::move(refined);
             }
+            // Keys on the animation's own: where its keyframes inside the shutter fall on an even
+            // grid of fewer pieces than the halving found (or the halving missed the tolerance),
+            // keys on that grid follow piecewise linear channels (morph weights, translations)
+            // exactly, kinks and all, as the grid's measured deviation must show.
+            const int numKeys = int(keys.size());
+            const bool isMissed = deviation && deviation->worst() > m_options.keyTolerancePixels;
+            if (const int pieces = keyframeGridPieces(); m_pieceOrder == 1 && numKeys > 2 && pieces > 0 &&
+                                                         (pieces + 1 < numKeys || (isMissed && std::size_t(pieces + 1) <= cap)) &&
+                                                         std::size_t(pieces + 1) * m_vertexWorkPerKey <= m_options.limits.maxVertexWork) {
+                std::vector<PosedInstances> grid, middles;
+                for (int k = 0; k <= pieces; ++k) grid.push_back(poseAt(keyTime(k, pieces + 1), grid.empty() ? nullptr : &grid.back()));
+                for (int k = 0; k < pieces; ++k) middles.push_back(poseAt(keyTime(2 * k + 1, 2 * pieces + 1), &grid[std::size_t(k)]));
+                const KeyDeviation gridDeviation = keyDeviation(grid, middles);
+                if (gridDeviation.worst() <= m_options.keyTolerancePixels) {
+                    keys = std::move(grid), deviation = gridDeviation;
+                    if (m_stats) m_stats->setInfo("motion_keys_on", "keyframes");
+                }
+            }
         }
         writeMeshes(keys);
         if (m_stats) {
@@ -810,6 +828,25 @@ private:
                                                                                                        : "screen");
             }
         }
+    }
+
+    // The fewest even pieces of the shutter (up to kMaxMotionKeys - 1) whose ends hold every
+    // keyframe time of the animation strictly inside the shutter, or 0 where there is none or
+    // no such grid (a keyframe off every grid by more than a thousandth of a piece).
+    int keyframeGridPieces() const {
+        if (!m_animation) return 0;
+        const double t0 = m_options.frame / m_options.fps, t1 = (m_options.frame + m_options.shutter) / m_options.fps;
+        std::vector<double> inside;  // as shares of the shutter
+        for (const gltf::AnimationSampler& sampler : m_animation->samplers)
+            for (const float time : sampler.times) {
+                const double u = (double(time) - t0) / (t1 - t0);
+                if (u > 1e-6 && u < 1.0 - 1e-6) inside.push_back(u);
+            }
+        if (inside.empty()) return 0;
+        for (int pieces = 1; pieces < kMaxMotionKeys; ++pieces)
+            if (std::all_of(inside.begin(), inside.end(), [&](double u) { return std::abs(u * pieces - std::round(u * pieces)) <= 1e-3; }))
+                return pieces;
+        return 0;
     }
 
     // --motion-curve bezier: the poses become the control points of the curve through them (or

@@ -167,3 +167,86 @@ TEST(SegmentedGeometry, ATurningCameraIsCutUntilTheScreenPathsAreWithinTheTolera
 }
 
 }  // namespace streak::exposure
+
+namespace streak::exposure {
+
+// One mesh of 5 keys (4 segments) and three quads: A still over the first half and moving at one
+// velocity over the second, B moving at one velocity until key 3 and at another after it, C
+// still throughout. A triangle's segments merge where its motion goes on along one line at one
+// pace: A into [0, 1/2] and [1/2, 1], B into [0, 3/4] and [3/4, 1], C into [0, 1]. The merged
+// segment's corners, mixed linearly as the methods mix them, are the exact projections of the
+// piecewise motion at every time; a merged-away slot has no screen box, and the segment at any
+// time of its run is the run's first slot, with the world corners of the run's ends.
+TEST(SegmentedGeometry, ATrianglesSegmentsMergeWhereItsMotionGoesOnAlongOneLine) {
+    Scene scene = test::emptyScene();
+    Mesh mesh;
+    mesh.material = test::addMaterial(scene, glm::vec3(1.0f));
+    mesh.numKeys = 5;
+    const std::array<glm::vec3, 4> quad{glm::vec3(-1, 1, 0), glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(1, 1, 0)};
+    const std::array<glm::vec3, 3> at{glm::vec3(-3, 0, -8), glm::vec3(0, 0, -9), glm::vec3(3, 1, -10)};
+    // Where each quad's centre is at key k.
+    auto centre = [&](int q, int k) {
+        if (q == 0) return at[0] + float(std::max(k - 2, 0)) * glm::vec3(0.3f, 0.2f, -0.1f);
+        if (q == 1) return at[1] + float(std::min(k, 3)) * glm::vec3(0.25f, -0.1f, 0.0f) + float(std::max(k - 3, 0)) * glm::vec3(-0.2f, 0.3f, 0.1f);
+        return at[2];
+    };
+    for (int k = 0; k < 5; ++k)
+        for (int q = 0; q < 3; ++q)
+            for (const glm::vec3& p : quad) mesh.positions.push_back(centre(q, k) + p);
+    for (std::uint32_t q = 0; q < 3; ++q) {
+        mesh.triangles.push_back({4 * q, 4 * q + 1, 4 * q + 2});
+        mesh.triangles.push_back({4 * q, 4 * q + 2, 4 * q + 3});
+    }
+    scene.meshes.push_back(mesh);
+    validateScene(scene);
+    const float aspect = 4.0f / 3.0f;
+    const raster::Viewport viewport{640, 480};
+
+    const SegmentedGeometry unmerged(scene, viewport, 1, 0.0);
+    ASSERT_EQ(unmerged.numSegments(), 4);
+    EXPECT_EQ(unmerged.numMergedAway(), 0);
+    EXPECT_FALSE(unmerged.hasWholeShutterSegments());
+
+    const SegmentedGeometry geometry(scene, viewport, 1);
+    ASSERT_EQ(geometry.numSegments(), 4);
+    EXPECT_EQ(geometry.numMergedAway(), 2 * (2 + 2 + 3));
+    EXPECT_TRUE(geometry.hasWholeShutterSegments());
+    const std::vector<raster::PixelBounds> bounds = geometry.screenBounds(viewport);
+    const std::array<std::vector<std::pair<int, int>>, 3> runs{std::vector<std::pair<int, int>>{{0, 2}, {2, 4}}, {{0, 3}, {3, 4}}, {{0, 4}}};
+    for (std::uint32_t tri = 0; tri < 6; ++tri) {
+        const int q = int(tri / 2);
+        const glm::uvec3 v = scene.meshes[0].triangles[tri];
+        for (const auto& [key0, key1] : runs[std::size_t(q)]) {
+            const TriangleSegment& head = geometry.segment(tri, key0);
+            EXPECT_EQ(head.key0, key0) << "quad " << q;
+            EXPECT_EQ(head.key1, key1) << "quad " << q;
+            EXPECT_EQ(head.t0, float(key0) / 4.0f);
+            EXPECT_EQ(head.t1, float(key1) / 4.0f);
+            const std::size_t headIndex = std::size_t(tri) * 4 + std::size_t(key0);
+            EXPECT_FALSE(geometry.isMergedAway(headIndex));
+            EXPECT_FALSE(bounds[headIndex].empty());
+            for (int s = key0 + 1; s < key1; ++s) {
+                EXPECT_TRUE(geometry.isMergedAway(headIndex + std::size_t(s - key0)));
+                EXPECT_TRUE(bounds[headIndex + std::size_t(s - key0)].empty()) << "a merged-away slot is never binned";
+            }
+            const SegmentedGeometry::WorldCorners corners = geometry.cornersOf(head);
+            for (int i = 0; i < 3; ++i) {
+                expectNear(corners.world0[i], scene.meshes[0].positions[std::size_t(key0) * 12 + v[i]], "world corner at the run's start");
+                expectNear(corners.world1[i], scene.meshes[0].positions[std::size_t(key1) * 12 + v[i]], "world corner at the run's end");
+            }
+            for (int j = 0; j <= 20; ++j) {
+                const float t = (float(key0) + float(key1 - key0) * (float(j) + 0.5f) / 21.0f) / 4.0f;
+                EXPECT_EQ(&geometry.segmentAt(tri, t), &head) << "t = " << t;
+                const double u = head.localTime(t);
+                for (int i = 0; i < 3; ++i) {
+                    const glm::vec3 world = mesh.positionAt(v[i], mesh.weightsAt(t));
+                    const glm::vec4 exact = scene.camera.clipFromWorld(t, aspect) * glm::vec4(world, 1.0f);
+                    const glm::vec4 mixed = glm::mix(head.clip0[i], head.clip1[i], float(u));
+                    for (int c = 0; c < 4; ++c) EXPECT_NEAR(mixed[c], exact[c], 2e-5f) << "quad " << q << " corner " << i << " at t = " << t;
+                }
+            }
+        }
+    }
+}
+
+}  // namespace streak::exposure

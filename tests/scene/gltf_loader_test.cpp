@@ -595,6 +595,46 @@ TEST(GltfLoader, ChosenBezierPiecesFollowARotationWithinTheToleranceInFewerPiece
 
 namespace streak {
 
+// A node translated along a zigzag, LINEAR keys at 0, 1, 2 and 3 s: (0,0,0), (1,0,0), (1,1,0),
+// (0,1,0). With the shutter over all of it, the motion kinks at a third and two thirds of the
+// shutter, which halving (2, 3, 5, 9... keys) never puts a key on: its keys cut the corners. Four
+// even keys hold the kinks, and the chosen keys are those four, each the animation's own pose,
+// the path between them the animation's to float rounding. With the shutter over [0, 2] s
+// (one kink, at the middle), halving's three keys already hold it and stay.
+TEST(GltfLoader, DefaultKeysFallOnTheAnimationsOwnKeyframesWhereAnEvenGridHoldsThem) {
+    test::GltfBuilder b;
+    addTriangle(b);
+    const int times = b.addFloats({0, 1, 2, 3}, "SCALAR", 1);
+    const int moves = b.addFloats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3", 3);
+    json zigzag;
+    zigzag["samplers"] = json::array({{{"input", times}, {"output", moves}}});
+    zigzag["channels"] = json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}});
+    b.json()["animations"] = json::array({zigzag});
+    GltfOptions options = atSeconds(0.0, 3.0, 0);
+    options.imageHeight = 240;
+    options.aspect = 4.0f / 3.0f;
+    RenderStats stats;
+    const Scene scene = load(b, options, &stats);
+    const Mesh& mesh = scene.meshes[0];
+    ASSERT_EQ(mesh.numKeys, 4);
+    ASSERT_TRUE(stats.info().count("motion_keys_on"));
+    EXPECT_EQ(stats.info().at("motion_keys_on"), "keyframes");
+    EXPECT_LE(stats.counter("motion_key_deviation_px"), 1e-3);
+    const std::array<glm::vec3, 4> corner{glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 1, 0), glm::vec3(0, 1, 0)};
+    for (int i = 0; i <= 300; ++i) {
+        const float t = float(i) / 300.0f;  // the vertex at (0,0,0), t * 3 seconds in
+        const float seconds = 3.0f * t;
+        const int leg = std::min(int(seconds), 2);
+        const glm::vec3 truth = glm::mix(corner[std::size_t(leg)], corner[std::size_t(leg + 1)], seconds - float(leg));
+        expectNear(mesh.positionAt(0, mesh.weightsAt(t)), truth, 1e-5f);
+    }
+
+    options.shutter = 2.0;
+    RenderStats halving;
+    EXPECT_EQ(load(b, options, &halving).meshes[0].numKeys, 3);
+    EXPECT_EQ(halving.info().count("motion_keys_on"), 0u);
+}
+
 TEST(GltfLoader, DefaultKeysBoundTheDepthWhereSurfacesCanPassInFrontOfEachOther) {
     // Two quads passing through each other along the view axis: their corners move a tenth of a
     // pixel on screen, but their depths swing 2 pixels' worth (0.005 at 3 units, through yfov 0.2,

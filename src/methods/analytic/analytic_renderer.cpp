@@ -120,8 +120,7 @@ public:
         budget.record(stats, budgetTotal, exposure::kBytesPerTileRecord);
         stats.setInfo("simd", simd::levelName(frame.simd));
         exposure::recordSpanShadingSettings(stats, m_options.spanShading);
-        stats.setCounter("segments_per_triangle", frame.segmented->numSegments());
-        exposure::recordSegmentPlan(stats, frame.segmented->segmentPlan());
+        exposure::recordSegments(stats, *frame.segmented);
         stats.setCounter("triangle_segments", double(frame.bounds.size()));
         stats.setCounter("backfacing_segments_skipped", double(frame.segmented->numBackFacing()));
         stats.setCounter("backface_intervals_culled", double(total.culledBackFacing));
@@ -223,8 +222,9 @@ private:
         scratch.records.clear();
         exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
         const std::size_t numSamples = scratch.sampleNdc.size();
-        // The early cull (exposure::EarlyCull): a sample an opaque triangle covers all the
-        // shutter from nearer than a later segment's nearest corner is not solved for it. It is
+        // The early cull (exposure::EarlyCull): a sample that opaque triangles cover all the
+        // shutter (one, or a mesh's several in turn) from nearer than a later segment's nearest
+        // corner is not solved for it. It is
         // off where the resolve sees every interval (a budget to compress to, the depth-order
         // check, occlusion-cull=0), in adaptive sampling's first pass, whose unseen-segment rule
         // counts intervals, and where no segment spans the shutter. The segments go nearest
@@ -232,7 +232,7 @@ private:
         // sample's list back in the tile's order (sortRunsBySource), so the order changes
         // nothing it sees.
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
-                                    !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->numSegments() == 1;
+                                    !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->hasWholeShutterSegments();
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
         // Line samples (exposure/line_samples.h) where every segment of the tile is still; not in
         // adaptive sampling's first pass, one point per pixel.
@@ -321,8 +321,14 @@ private:
                             r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
                             r.interval.source = index;
                             scratch.records.push_back(r);
-                            if (isOccluder && r.interval.t0 == 0.0f && r.interval.t1 == 1.0f)
-                                earlyCull.cover(sample, std::max(r.interval.depth0, r.interval.depth1));
+                            // What a mesh's opaque intervals cover together (coverStretch): a
+                            // moving surface passes its triangles over a sample one after another.
+                            if (isOccluder) {
+                                const float farthest = std::max(r.interval.depth0, r.interval.depth1);
+                                if (r.interval.t0 == 0.0f && r.interval.t1 == 1.0f) earlyCull.cover(sample, farthest);
+                                else if (r.interval.t1 - r.interval.t0 >= exposure::EarlyCull::kShortestStretch)
+                                    earlyCull.coverStretch(sample, r.interval.t0, r.interval.t1, farthest);
+                            }
                         }
                     }
                 }

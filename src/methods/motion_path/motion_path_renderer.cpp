@@ -198,7 +198,6 @@ public:
         const double numSamples = refinement ? refinement->numSamples(numPixels, fullPattern) : numPixels * fullPattern.count();
         if (refinement) refinement->record(stats, settings.adaptiveThreshold);
         budget.record(stats, budgetTotal, kBytesPerFragment);
-        stats.setCounter("segments_per_triangle", frame.segmented.numSegments());
         stats.setCounter("motion_paths", double(frame.paths.size()));
         stats.setCounter("path_faces_rasterized", double(total.pathFaces));
         stats.setCounter("backfacing_paths_skipped", double(frame.segmented.numBackFacing()));
@@ -221,7 +220,7 @@ public:
         stats.setCounter("mask_bits", m_options.maskBits);
         stats.setCounter("exact_weights", m_options.exactWeights ? 1 : 0);
         exposure::recordSpanShadingSettings(stats, m_options.spanShading);
-        exposure::recordSegmentPlan(stats, frame.segmented.segmentPlan());
+        exposure::recordSegments(stats, frame.segmented);
         stats.setCounter("sort_enabled", m_options.sortIntervals ? 1 : 0);
 
         if (frame.passes) frame.passes->writeTo(image, context.stats);
@@ -475,7 +474,7 @@ private:
         // nothing after. It is off in adaptive sampling's first pass (its unseen-path rule counts
         // intervals), without exact opaque weights or the sort, and where no path spans the shutter.
         const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
-                                    frame.segmented.numSegments() == 1;
+                                    frame.segmented.hasWholeShutterSegments();
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
         // Line samples (exposure/line_samples.h) where every path of the tile is still; not in
         // adaptive sampling's first pass, one point per pixel.
