@@ -46,6 +46,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
 usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,budget,models,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--plot docs]
 """
 import argparse
+import glob
 import json
 import os
 import subprocess
@@ -85,8 +86,11 @@ def run(binary, case_args, method_args, out, stats, extra=(), simd=None):
     env = dict(os.environ)
     if simd:
         env["STREAK_SIMD"] = simd
-    if os.path.dirname(binary) not in ("", "build") and os.path.exists(os.path.join(os.path.dirname(binary), "libstreak.so")):
-        env["LD_LIBRARY_PATH"] = os.path.dirname(binary)  # a saved baseline with its own library
+    # A saved baseline with its own library (libstreak.so, or only its versioned file): without
+    # the path, the binary's run path finds this build's library instead.
+    folder = os.path.dirname(binary)
+    if folder not in ("", "build") and glob.glob(os.path.join(folder, "libstreak.so*")):
+        env["LD_LIBRARY_PATH"] = folder
     args = [binary, "render", *case_args, *method_args, *extra, "-o", out, "--stats", stats]
     process = subprocess.Popen(args, env=env)
     _, status, usage = os.wait4(process.pid, 0)
