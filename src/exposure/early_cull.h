@@ -127,8 +127,8 @@ private:
     };
 
     int m_spp = 1, m_tileWidth = 1;
-    std::vector<Run> m_runs;                 ///< per sample of a line tile, kStretchRuns (coverStretch)
-    std::vector<std::uint8_t> m_runCount;    ///< per sample of a line tile; empty until a stretch comes
+    std::vector<Run> m_runs;                 ///< per sample, kStretchRuns (coverStretch)
+    std::vector<std::uint8_t> m_runCount;    ///< per sample; empty until a stretch comes
     std::vector<float> m_farthest;       ///< per sample
     std::vector<float> m_pixelFarthest;  ///< per pixel: the farthest of its samples'
     std::vector<std::uint32_t> m_order;       ///< m_orderOf nearest first

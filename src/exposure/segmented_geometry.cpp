@@ -23,6 +23,9 @@ constexpr double kSeenNdc = 1.5;
 // How far a merged segment may turn a corner's normal from its key's (radians): a thousandth of
 // a radian changes a diffuse term by a thousandth, under what an 8-bit image can hold.
 constexpr double kMergeNormalRadians = 1e-3;
+// The longest run of segments whose joints are measured one by one where the bound on their
+// straightness is too coarse (SegmentedGeometry::mergeLinearRuns).
+constexpr std::size_t kMeasuredRun = 8;
 
 // The largest screen distance, in pixels of a viewport.height tall image, between a probed
 // vertex's true position at the middle of each of numSegments even pieces of the shutter (its
@@ -126,7 +129,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
             s.triangle = tri;
             s.t0 = float(k) / float(n);
             s.t1 = float(k + 1) / float(n);
-            s.key0 = std::uint16_t(k), s.key1 = std::uint16_t(k + 1);
+            s.key0 = std::uint32_t(k), s.key1 = std::uint32_t(k + 1);
             const glm::uvec3 v = triangles[tri].vertices;
             float minW = std::numeric_limits<float>::max();
             for (int i = 0; i < 3; ++i) {
@@ -138,7 +141,10 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
             orient(s, triangles[tri].isDoubleSided);
         }
     });
-    if (n > 1 && mergeTolerancePixels > 0.0) mergeLinearRuns(viewport, mergeTolerancePixels);
+    // A camera that does not turn maps straight clip paths to straight world paths (clip space is
+    // a fixed linear map of the view, plus the camera's own linear travel), so the world corners
+    // shading takes at a merged segment's ends hold between them too; a turning one does not.
+    if (n > 1 && mergeTolerancePixels > 0.0 && !scene.camera.isTurning()) mergeLinearRuns(viewport, mergeTolerancePixels);
     std::atomic<std::int64_t> backFacing{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_segments.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
         std::int64_t localBackFacing = 0;
@@ -152,22 +158,19 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
 void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels) {
     const std::size_t n = std::size_t(m_numSegments);
     const auto& triangles = m_flat.triangles();
+    const double pixelsPerNdc = 0.5 * double(std::max(viewport.width, viewport.height));
     const glm::dvec2 halfSize(0.5 * viewport.width, 0.5 * viewport.height);
-    // Whether key pose `middle` of corner v lies on the straight path from key a to key b, at
-    // its time: on screen within the tolerance, in view depth to 1e-6 of its size, its normal's
-    // direction within kMergeNormalRadians. Clip space moves linearly between a segment's ends (so does the normal), so
-    // a merged segment puts the corner at the linear mix of its ends' clip positions.
+    // Whether key pose `middle` of corner `vertex` lies on the straight path from key a to key b
+    // at its time: on screen within the tolerance, in view depth to 1e-5 of its size, its
+    // normal's direction within kMergeNormalRadians (shading normalizes the mix). Measured, where
+    // the bound below is too coarse for float rounding that does not add up.
     auto isOnPath = [&](const glm::vec4& clipA, const glm::vec4& clipMiddle, const glm::vec4& clipB, std::uint32_t vertex, std::size_t a,
                         std::size_t middle, std::size_t b) {
         const double u = double(middle - a) / double(b - a);
         const glm::dvec4 mixed = glm::mix(glm::dvec4(clipA), glm::dvec4(clipB), u), truth(clipMiddle);
-        if (clipA == clipMiddle && clipMiddle == clipB) return m_normals[a][vertex] == m_normals[middle][vertex] && m_normals[middle][vertex] == m_normals[b][vertex];
         if (!(mixed.w > 0.0 && truth.w > 0.0)) return false;
         const glm::dvec2 off = (glm::dvec2(mixed) / mixed.w - glm::dvec2(truth) / truth.w) * halfSize;
-        if (!(std::abs(off.x) <= tolerancePixels && std::abs(off.y) <= tolerancePixels && std::abs(mixed.w - truth.w) <= 1e-6 * truth.w)) return false;
-        // Shading takes the normal's direction: a mesh's normals are unit length at each key
-        // (a morph's or a skin's renormalized), and the mix of two, normalized, points at most
-        // kMergeNormalRadians away from the key's own.
+        if (!(std::abs(off.x) <= tolerancePixels && std::abs(off.y) <= tolerancePixels && std::abs(mixed.w - truth.w) <= 1e-5 * truth.w)) return false;
         const glm::dvec3 normal = glm::mix(glm::dvec3(m_normals[a][vertex]), glm::dvec3(m_normals[b][vertex]), u);
         const glm::dvec3 normalTruth(m_normals[middle][vertex]);
         const double lengths = glm::length(normal) * glm::length(normalTruth);
@@ -180,23 +183,70 @@ void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double
         for (std::size_t tri = range.begin(); tri != range.end(); ++tri) {
             TriangleSegment* slots = &m_segments[tri * n];
             const glm::uvec3 v = triangles[tri].vertices;
-            // Whether the run of slots a..b (key poses a..b + 1) is one straight path: every key
-            // pose between its ends on it, for each corner.
-            auto isLinear = [&](std::size_t a, std::size_t b) {
-                for (std::size_t middle = a + 1; middle <= b; ++middle)
-                    for (int i = 0; i < 3; ++i)
-                        if (!isOnPath(slots[a].clip0[i], slots[middle].clip0[i], slots[b].clip1[i], v[i], a, middle, b + 1)) return false;
-                return true;
-            };
             for (std::size_t a = 0; a < n;) {
+                // The run of slots a..b grows while a bound on how far its joints stray from
+                // the straight path between its ends stays within the tolerance. With every
+                // slot's velocity (clip space, per key segment) within M of the first slot's,
+                // key j of a run of L slots lies within 2 L M of the mix of the run's ends (the
+                // sum of the velocities' departures before it, less its share of all of them),
+                // in each clip coordinate. That is within 2 L M (1 + |ndc|) / (w - 2 L M) in NDC,
+                // and 2 L M of view depth; normals the same way. One step per slot: a still
+                // triangle (M = 0) merges whole, at any number of keys.
+                double clipSpread = 0.0, normalSpread = 0.0;
+                double minW = std::numeric_limits<double>::max(), maxNdc = 0.0, minNormal = std::numeric_limits<double>::max();
+                auto take = [&](std::size_t key, const std::array<glm::vec4, 3>& clip) {
+                    for (int i = 0; i < 3; ++i) {
+                        minW = std::min(minW, double(clip[i].w));
+                        if (clip[i].w > 0.0f)
+                            maxNdc = std::max({maxNdc, std::abs(double(clip[i].x) / clip[i].w), std::abs(double(clip[i].y) / clip[i].w)});
+                        minNormal = std::min(minNormal, double(glm::length(m_normals[key][v[i]])));
+                    }
+                };
+                take(a, slots[a].clip0);
+                take(a + 1, slots[a].clip1);
                 std::size_t b = a;
-                while (b + 1 < n && isLinear(a, b + 1)) ++b;
+                while (b + 1 < n) {
+                    const std::size_t next = b + 1;
+                    double clip = clipSpread, normal = normalSpread;
+                    for (int i = 0; i < 3; ++i) {
+                        const glm::dvec4 d = (glm::dvec4(slots[next].clip1[i]) - glm::dvec4(slots[next].clip0[i])) -
+                                             (glm::dvec4(slots[a].clip1[i]) - glm::dvec4(slots[a].clip0[i]));
+                        clip = std::max({clip, std::abs(d.x), std::abs(d.y), std::abs(d.z), std::abs(d.w)});
+                        const glm::dvec3 dn = (glm::dvec3(m_normals[next + 1][v[i]]) - glm::dvec3(m_normals[next][v[i]])) -
+                                              (glm::dvec3(m_normals[a + 1][v[i]]) - glm::dvec3(m_normals[a][v[i]]));
+                        normal = std::max({normal, std::abs(dn.x), std::abs(dn.y), std::abs(dn.z)});
+                    }
+                    const double saveW = minW, saveNdc = maxNdc, saveNormal = minNormal;
+                    take(next + 1, slots[next].clip1);
+                    const double reach = 2.0 * double(next - a + 1);  // 2 L
+                    const double clipOff = reach * clip, normalOff = reach * normal * std::sqrt(3.0);
+                    const bool isStraight = clipOff == 0.0 ||
+                                            (minW - clipOff > 0.0 && clipOff * (1.0 + maxNdc) / (minW - clipOff) * pixelsPerNdc <= tolerancePixels &&
+                                             clipOff <= 1e-5 * minW);
+                    // Normals: zero (a mesh without them) stays zero; else the mix turns the
+                    // key's own by at most about its offset over its length.
+                    const bool isNormalKept = normalOff == 0.0 || normalOff <= kMergeNormalRadians * 0.5 * minNormal;
+                    // Where the bound is too coarse, a short run is measured joint by joint
+                    // instead (at most kMeasuredRun slots, so the work stays linear in keys).
+                    auto isMeasuredStraight = [&] {
+                        if (next - a + 1 > kMeasuredRun) return false;
+                        for (std::size_t middle = a + 1; middle <= next; ++middle)
+                            for (int i = 0; i < 3; ++i)
+                                if (!isOnPath(slots[a].clip0[i], slots[middle].clip0[i], slots[next].clip1[i], v[i], a, middle, next + 1)) return false;
+                        return true;
+                    };
+                    if ((!isStraight || !isNormalKept) && !isMeasuredStraight()) {
+                        minW = saveW, maxNdc = saveNdc, minNormal = saveNormal;
+                        break;
+                    }
+                    clipSpread = clip, normalSpread = normal, b = next;
+                }
                 if (b > a) {
                     TriangleSegment merged = slots[a];
                     merged.t1 = slots[b].t1, merged.clip1 = slots[b].clip1, merged.key1 = slots[b].key1;
-                    float minW = std::numeric_limits<float>::max();
-                    for (int i = 0; i < 3; ++i) minW = std::min({minW, merged.clip0[i].w, merged.clip1[i].w});
-                    merged.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
+                    float nearestW = std::numeric_limits<float>::max();
+                    for (int i = 0; i < 3; ++i) nearestW = std::min({nearestW, merged.clip0[i].w, merged.clip1[i].w});
+                    merged.nearness = nearestW > 0.0f ? 1.0f / nearestW : 0.0f;
                     orient(merged, triangles[tri].isDoubleSided);
                     for (std::size_t k = a; k <= b; ++k) slots[k] = merged;
                     localMerged += std::int64_t(b - a);

@@ -31,7 +31,7 @@ struct TriangleSegment {
     // motion stays linear over several segments and they are merged into one
     // (SegmentedGeometry, kMergeTolerancePixels). Every slot of a merged run holds the merged
     // segment; the slot at key0 is the one binned and solved.
-    std::uint16_t key0 = 0, key1 = 1;
+    std::uint32_t key0 = 0, key1 = 1;
 
     // A shutter time as the segment's parameter u in [0, 1].
     double localTime(float t) const { return t1 > t0 ? (double(t) - t0) / (double(t1) - t0) : 0.0; }
@@ -55,8 +55,9 @@ public:
     static constexpr int kMaxCurveSegments = 64;
     // How far (pixels) a triangle's corners may stray, at the segment ends a merge drops, from
     // the merged segment's straight screen path: float rounding, and nothing an image can show
-    // (a vertex a thousandth of a pixel off). View depth is held to 1e-6 of its size, a normal's
-    // direction to a thousandth of a radian. 0: no merging.
+    // (a vertex a thousandth of a pixel off). View depth is held to 1e-5 of its size, a normal's
+    // direction to a thousandth of a radian. 0: no merging. Only under a camera that does not
+    // turn (where a straight path in clip space is one in the world, which shading follows).
     static constexpr double kMergeTolerancePixels = 1e-3;
 
     // How a scene's motion is cut: numSegments linear segments over the shutter, piecesPerKey of

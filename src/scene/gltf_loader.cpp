@@ -800,12 +800,13 @@ private:
             // Keys on the animation's own: where its keyframes inside the shutter fall on an even
             // grid of fewer pieces than the halving found (or the halving missed the tolerance),
             // keys on that grid follow piecewise linear channels (morph weights, translations)
-            // exactly, kinks and all, as the grid's measured deviation must show.
+            // exactly, kinks and all, as the grid's measured deviation must show. Its poses and
+            // middles are posed while the halving's keys are held: the vertex-work limit counts both.
             const int numKeys = int(keys.size());
             const bool isMissed = deviation && deviation->worst() > m_options.keyTolerancePixels;
             if (const int pieces = keyframeGridPieces(); m_pieceOrder == 1 && numKeys > 2 && pieces > 0 &&
-                                                         (pieces + 1 < numKeys || (isMissed && std::size_t(pieces + 1) <= cap)) &&
-                                                         std::size_t(pieces + 1) * m_vertexWorkPerKey <= m_options.limits.maxVertexWork) {
+                                                         (pieces + 1 < numKeys || (isMissed && pieces + 1 > numKeys && std::size_t(pieces + 1) <= cap)) &&
+                                                         std::size_t(2 * pieces + 1 + numKeys) * m_vertexWorkPerKey <= m_options.limits.maxVertexWork) {
                 std::vector<PosedInstances> grid, middles;
                 for (int k = 0; k <= pieces; ++k) grid.push_back(poseAt(keyTime(k, pieces + 1), grid.empty() ? nullptr : &grid.back()));
                 for (int k = 0; k < pieces; ++k) middles.push_back(poseAt(keyTime(2 * k + 1, 2 * pieces + 1), &grid[std::size_t(k)]));
