@@ -69,8 +69,12 @@ double pieceDeviation(const Scene& scene, const raster::Viewport& viewport, int 
     return worst;
 }
 
-// A segment's facing from its ends' clip corners (TriangleSegment::orientation), once nearness is set.
-void orient(TriangleSegment& s, bool isDoubleSided) {
+// What a segment's ends' clip corners say of it: its nearness (1 / its nearest corner's view
+// depth; clip space is linear over the segment, so the nearest is at an end) and its facing.
+void finishSegment(TriangleSegment& s, bool isDoubleSided) {
+    float minW = std::numeric_limits<float>::max();
+    for (int i = 0; i < 3; ++i) minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
+    s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
     s.orientation = 0;
     if (s.isInFront()) {
         if (raster::isBackFacingThroughout(s.clip0, s.clip1)) s.orientation = -1;
@@ -131,14 +135,11 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
             s.t1 = float(k + 1) / float(n);
             s.key0 = std::uint32_t(k), s.key1 = std::uint32_t(k + 1);
             const glm::uvec3 v = triangles[tri].vertices;
-            float minW = std::numeric_limits<float>::max();
             for (int i = 0; i < 3; ++i) {
                 s.clip0[i] = clipFromWorld[k] * glm::vec4(m_positions[k][v[i]], 1.0f);
                 s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(m_positions[k + 1][v[i]], 1.0f);
-                minW = std::min({minW, s.clip0[i].w, s.clip1[i].w});
             }
-            s.nearness = minW > 0.0f ? 1.0f / minW : 0.0f;
-            orient(s, triangles[tri].isDoubleSided);
+            finishSegment(s, triangles[tri].isDoubleSided);
         }
     });
     // A camera that does not turn maps straight clip paths to straight world paths (clip space is
@@ -244,10 +245,7 @@ void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double
                 if (b > a) {
                     TriangleSegment merged = slots[a];
                     merged.t1 = slots[b].t1, merged.clip1 = slots[b].clip1, merged.key1 = slots[b].key1;
-                    float nearestW = std::numeric_limits<float>::max();
-                    for (int i = 0; i < 3; ++i) nearestW = std::min({nearestW, merged.clip0[i].w, merged.clip1[i].w});
-                    merged.nearness = nearestW > 0.0f ? 1.0f / nearestW : 0.0f;
-                    orient(merged, triangles[tri].isDoubleSided);
+                    finishSegment(merged, triangles[tri].isDoubleSided);
                     for (std::size_t k = a; k <= b; ++k) slots[k] = merged;
                     localMerged += std::int64_t(b - a);
                 }
