@@ -57,7 +57,7 @@ CurvedGeometry::CurvedGeometry(const Scene& scene, float aspect, int cameraOrder
 
     // Positions, normals and the camera at order + 1 evenly spaced times of every piece.
     const int n = m_order, numTimes = pieces * n + 1;
-    std::vector<std::vector<glm::vec3>> positions(static_cast<std::size_t>(numTimes)), normals(static_cast<std::size_t>(numTimes));
+    std::vector<VertexArray> positions(static_cast<std::size_t>(numTimes)), normals(static_cast<std::size_t>(numTimes));
     std::vector<glm::mat4> clipFromWorld(static_cast<std::size_t>(numTimes));
     tbb::parallel_for(0, numTimes, [&](int k) {
         const float t = float(k) / float(numTimes - 1);

@@ -22,8 +22,8 @@ namespace streak::exposure {
 struct InstantFrame {
     float t = 0.0f;
     glm::vec3 eye{0.0f};
-    std::vector<glm::vec3> positions;  ///< world, per global vertex
-    std::vector<glm::vec3> normals;
+    VertexArray positions;  ///< world, per global vertex
+    VertexArray normals;
     std::vector<raster::RasterTriangle> triangles;
 
     void setup(const FlatGeometry& geometry, float time, const raster::Viewport& viewport, float aspect);

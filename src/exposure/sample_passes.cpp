@@ -122,7 +122,7 @@ void PixelPasses::compact() {
     m_deep.resize(n);
 }
 
-SampledPasses::SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height,
+SampledPasses::SampledPasses(const Scene& scene, const FlatTriangles& triangles, const PassRequest& request, int width, int height,
                              const raster::PixelBounds& pixels, float sampleWeight)
     : m_frame(scene, request, width, height), m_triangles(triangles), m_bounds(pixels), m_sampleWeight(sampleWeight),
       m_pixels(std::size_t(pixels.x1 - pixels.x0 + 1) * std::size_t(pixels.y1 - pixels.y0 + 1)) {

@@ -103,7 +103,7 @@ public:
     // The pixels of `pixels` (the render's region, in the width x height frame) are kept; each
     // sample at each time weighs sampleWeight in its pixel's passes (1 / (samples x times) for the
     // box filter), applied as it is added so that many times sum without losing precision.
-    SampledPasses(const Scene& scene, const std::vector<FlatTriangle>& triangles, const PassRequest& request, int width, int height,
+    SampledPasses(const Scene& scene, const FlatTriangles& triangles, const PassRequest& request, int width, int height,
                   const raster::PixelBounds& pixels, float sampleWeight);
 
     // One tile's samples (pixel-major in rect, spp a pixel) at one time, each weighed
@@ -149,7 +149,7 @@ private:
     void add(PixelPasses& pixel, std::uint32_t triangle, float share, float depth, const glm::vec3& color);
 
     PassFrame m_frame;
-    const std::vector<FlatTriangle>& m_triangles;
+    const FlatTriangles& m_triangles;
     raster::PixelBounds m_bounds;
     float m_sampleWeight = 1.0f;
     std::vector<PixelPasses> m_pixels;  ///< the bounds' pixels, row by row

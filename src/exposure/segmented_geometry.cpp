@@ -273,8 +273,8 @@ SegmentedGeometry::WorldCorners SegmentedGeometry::cornersOf(const TriangleSegme
     return c;
 }
 
-std::vector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {
-    std::vector<raster::PixelBounds> bounds(m_segments.size());
+LargeVector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {
+    LargeVector<raster::PixelBounds> bounds(m_segments.size());
     tbb::parallel_for(std::size_t(0), m_segments.size(), [&](std::size_t i) {
         const TriangleSegment& s = m_segments[i];
         raster::PixelBounds& b = bounds[i];

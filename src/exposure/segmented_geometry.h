@@ -3,6 +3,7 @@
 #include "raster/screen_triangle.h"
 #include "scene/flat_geometry.h"
 #include "scene/scene.h"
+#include "util/memory.h"
 #include "util/stats.h"
 
 #include <glm/vec3.hpp>
@@ -109,14 +110,14 @@ public:
     // the eye each corner's screen path is a straight segment between its ends, so the box of
     // the six projected corners holds the triangle at every time; a segment reaching behind the
     // eye may cover anything; one that faces away throughout covers nothing.
-    std::vector<raster::PixelBounds> screenBounds(const raster::Viewport& viewport) const;
+    LargeVector<raster::PixelBounds> screenBounds(const raster::Viewport& viewport) const;
 
 private:
     FlatGeometry m_flat;
     SegmentPlan m_plan;
     int m_numSegments = 1;
-    std::vector<TriangleSegment> m_segments;
-    std::vector<std::vector<glm::vec3>> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
+    LargeVector<TriangleSegment> m_segments;
+    std::vector<VertexArray> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
     std::int64_t m_numMergedAway = 0;
     bool m_hasWholeShutterSegments = false;

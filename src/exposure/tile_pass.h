@@ -373,7 +373,7 @@ void noteUnseenItems(std::span<const std::uint32_t> items, std::span<const raste
 // Tells a first pass of adaptive sampling what pixel (x, y)'s one sample showed: the surfaces of
 // its opaque pieces, and, where opaque surfaces covered it all the shutter (isOpaque), the
 // farthest depth it saw there.
-inline void tellFirstPass(FirstPassGeometry& firstPass, int x, int y, std::span<const VisiblePiece> pieces, const std::vector<FlatTriangle>& triangles,
+inline void tellFirstPass(FirstPassGeometry& firstPass, int x, int y, std::span<const VisiblePiece> pieces, const FlatTriangles& triangles,
                           bool isOpaque, float farthest) {
     for (const VisiblePiece& piece : pieces) firstPass.show(x, y, triangles[piece.triangle].mesh, triangles[piece.triangle].material);
     if (isOpaque) firstPass.setReach(x, y, farthest);
@@ -409,7 +409,7 @@ inline void sortRunsBySource(std::span<const std::uint32_t> runs, std::vector<Ti
 // `firstPass` the surfaces each pixel showed.
 template <class Cache, class Counters, class TriangleOf, class Shade>
 void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
-                      const std::vector<FlatTriangle>& triangles, int width, int height, const ExactResolveOptions& options,
+                      const FlatTriangles& triangles, int width, int height, const ExactResolveOptions& options,
                       std::chrono::steady_clock::time_point intervalStart, ExactTileScratch<Cache, Counters>& scratch,
                       Image& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr,
                       PassFrame* passes = nullptr, FirstPassGeometry* firstPass = nullptr) {

@@ -7,6 +7,9 @@
 namespace streak {
 
 FlatGeometry::FlatGeometry(const Scene& scene) : m_scene(scene) {
+    std::size_t numTriangles = 0;
+    for (const Mesh& mesh : scene.meshes) numTriangles += mesh.triangles.size();
+    m_triangles.reserve(numTriangles);
     std::uint32_t offset = 0;
     for (std::uint32_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
@@ -23,7 +26,7 @@ namespace {
 
 template <class Eval>
 void evaluateAllVertices(const Scene& scene, const std::vector<std::uint32_t>& offsets, std::size_t numVertices,
-                         std::vector<glm::vec3>& out, Eval&& eval) {
+                         VertexArray& out, Eval&& eval) {
     out.resize(numVertices);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scene.meshes.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t m = r.begin(); m != r.end(); ++m) {
@@ -38,12 +41,12 @@ void evaluateAllVertices(const Scene& scene, const std::vector<std::uint32_t>& o
 
 }  // namespace
 
-void FlatGeometry::positionsAt(float t, std::vector<glm::vec3>& positions) const {
+void FlatGeometry::positionsAt(float t, VertexArray& positions) const {
     evaluateAllVertices(m_scene, m_meshVertexOffset, numVertices(), positions,
                         [t](const Mesh& mesh, std::uint32_t v) { return mesh.positionAt(v, mesh.weightsAt(t)); });
 }
 
-void FlatGeometry::normalsAt(float t, std::vector<glm::vec3>& normals) const {
+void FlatGeometry::normalsAt(float t, VertexArray& normals) const {
     evaluateAllVertices(m_scene, m_meshVertexOffset, numVertices(), normals, [t](const Mesh& mesh, std::uint32_t v) {
         return mesh.hasNormals() ? mesh.normalAt(v, mesh.weightsAt(t)) : glm::vec3(0.0f);
     });

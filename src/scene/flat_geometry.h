@@ -2,6 +2,7 @@
 
 #include "scene/scene.h"
 #include "scene/shading.h"
+#include "util/memory.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -21,6 +22,11 @@ struct FlatTriangle {
     bool isDoubleSided = false;
 };
 
+// A frame's per-triangle and per-vertex arrays: large on a dense scene, so in huge pages
+// where the system has them (LargeVector).
+using FlatTriangles = LargeVector<FlatTriangle>;
+using VertexArray = LargeVector<glm::vec3>;
+
 // FlatGeometry views all triangles of a scene as one array with global vertex indices, so that
 // methods loop over triangles rather than meshes. It owns no positions: it evaluates the
 // scene's key poses at a shutter time, and turns a hit into a SurfacePoint for shading.
@@ -29,14 +35,14 @@ public:
     explicit FlatGeometry(const Scene& scene);
 
     const Scene& scene() const { return m_scene; }
-    const std::vector<FlatTriangle>& triangles() const { return m_triangles; }
+    const FlatTriangles& triangles() const { return m_triangles; }
     std::size_t numVertices() const { return m_vertexMesh.size(); }
     std::uint32_t meshVertexOffset(std::uint32_t mesh) const { return m_meshVertexOffset[mesh]; }
     const Mesh& meshOf(const FlatTriangle& tri) const { return m_scene.meshes[tri.mesh]; }
 
     // World-space positions (and normals, zero for meshes without) of all vertices at time t.
-    void positionsAt(float t, std::vector<glm::vec3>& positions) const;
-    void normalsAt(float t, std::vector<glm::vec3>& normals) const;
+    void positionsAt(float t, VertexArray& positions) const;
+    void normalsAt(float t, VertexArray& normals) const;
     // The three corners of one triangle at time t.
     std::array<glm::vec3, 3> cornersAt(const FlatTriangle& tri, float t) const;
     std::array<glm::vec3, 3> cornerNormalsAt(const FlatTriangle& tri, float t) const;
@@ -56,7 +62,7 @@ public:
 
 private:
     const Scene& m_scene;
-    std::vector<FlatTriangle> m_triangles;
+    FlatTriangles m_triangles;
     std::vector<std::uint32_t> m_meshVertexOffset;  ///< per mesh, into the global vertex array
     std::vector<std::uint32_t> m_vertexMesh;        ///< per global vertex
 };

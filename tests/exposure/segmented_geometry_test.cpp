@@ -211,7 +211,7 @@ TEST(SegmentedGeometry, ATrianglesSegmentsMergeWhereItsMotionGoesOnAlongOneLine)
     ASSERT_EQ(geometry.numSegments(), 4);
     EXPECT_EQ(geometry.numMergedAway(), 2 * (2 + 2 + 3));
     EXPECT_TRUE(geometry.hasWholeShutterSegments());
-    const std::vector<raster::PixelBounds> bounds = geometry.screenBounds(viewport);
+    const auto bounds = geometry.screenBounds(viewport);
     const std::array<std::vector<std::pair<int, int>>, 3> runs{std::vector<std::pair<int, int>>{{0, 2}, {2, 4}}, {{0, 3}, {3, 4}}, {{0, 4}}};
     for (std::uint32_t tri = 0; tri < 6; ++tri) {
         const int q = int(tri / 2);

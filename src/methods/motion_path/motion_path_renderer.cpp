@@ -281,7 +281,7 @@ private:
         const FlatGeometry& geometry;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         exposure::SpanShadingSettings spanShading;
-        std::vector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
+        LargeVector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
     };
 
