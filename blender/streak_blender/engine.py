@@ -78,7 +78,7 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         for line in report.warnings():
             self.report({"WARNING"}, f"streak: {line}")
         export_ms = (time.perf_counter() - started) * 1000.0
-        summary = f"streak {settings.method}: {report.objects} objects, {report.triangles} triangles, {report.keys} keys"
+        summary = f"streak {settings.method}: {report.objects} objects, {report.triangles} triangles, {report.keys} keys" + (" on the keyframes" if report.keys_on_keyframes else "")
         self.update_stats("", summary)
 
         view_layer = depsgraph.view_layer
@@ -89,7 +89,7 @@ class StreakRenderEngine(bpy.types.RenderEngine):
             options["samples"] = str(settings.samples)
         region = export.border_region(scene, width, height)
         transparent = scene.render.film_transparent
-        last_render.update({"keys": report.keys, "objects": report.objects, "triangles": report.triangles,
+        last_render.update({"keys": report.keys, "keys_on_keyframes": report.keys_on_keyframes, "objects": report.objects, "triangles": report.triangles,
                             "topology_changes": list(report.topology_changes), "moved_by_velocity": list(report.moved_by_velocity),
                             "camera_baked": report.camera_baked, "warnings": report.warnings(), "export_ms": export_ms})
 

@@ -21,6 +21,7 @@ class Report:
 
     def __init__(self):
         self.keys = 0
+        self.keys_on_keyframes = False  # the keys are on an even grid through the animation's keyframes
         self.objects = 0
         self.triangles = 0
         self.topology_changes = []   # names of objects whose triangles change between keys
@@ -49,6 +50,34 @@ def shutter_times(scene, frame, keys):
     position = getattr(getattr(scene, "cycles", None), "motion_blur_position", "CENTER")
     start = frame + _POSITIONS.get(position, -0.5) * length
     return [start + length * k / (keys - 1) for k in range(keys)], length
+
+
+def keyframe_frames(scene):
+    """The frames of every keyframe in the actions that animate the scene's objects, their data
+    (a camera's lens, a light) and their shape keys."""
+    frames = set()
+    for obj in scene.objects:
+        data = obj.data
+        for block in (obj, data, getattr(data, "shape_keys", None)):
+            animation = getattr(block, "animation_data", None) if block is not None else None
+            if animation and animation.action:
+                for fcurve in getattr(animation.action, "fcurves", ()):  # (a layered action has none here: halving stands)
+                    frames.update(point.co.x for point in fcurve.keyframe_points)
+    return frames
+
+
+def keyframe_grid_pieces(frames, start, length, most=32):
+    """The fewest even pieces (up to `most`) of the shutter [start, start + length] whose ends hold
+    every keyframe strictly inside it (to a thousandth of a piece), or 0 where there is none inside
+    or no such grid: the command line's rule (gltf_loader's keyframeGridPieces)."""
+    inside = [(f - start) / length for f in frames if length > 0.0]
+    inside = [u for u in inside if 1e-6 < u < 1.0 - 1e-6]
+    if not inside:
+        return 0
+    for pieces in range(1, most + 1):
+        if all(abs(u * pieces - round(u * pieces)) <= 1e-3 for u in inside):
+            return pieces
+    return 0
 
 
 def shutter_curve(scene, points=32):
@@ -336,12 +365,16 @@ class Keys:
     """Snapshots at the key times, taken through the engine's frame_set. With `count` 0 the keys
     start at the shutter's ends and double (as the command line's --key-tolerance does) until
     every vertex half-way between two keys is within `tolerance` pixels of the straight line
-    between them, up to 33."""
+    between them, up to 33. Then, as the command line does, where the animation's keyframes
+    inside the shutter fall on an even grid of fewer pieces, the keys go on that grid once it is
+    measured within the tolerance the same way: linear keyframes (a LINEAR morph, a zigzag
+    path) are straight between them, kinks and all, where halving's grid misses the kinks."""
 
     def __init__(self, engine, depsgraph, scene, should_stop=lambda: False):
         self.engine, self.depsgraph, self.scene, self.should_stop = engine, depsgraph, scene, should_stop
         self.frame = scene.frame_current + scene.frame_subframe  # frame_set moves the scene's
         self.cache = {}
+        self.on_keyframes = False
 
     def at(self, time):
         if time not in self.cache:
@@ -364,12 +397,24 @@ class Keys:
         while True:
             times, _ = shutter_times(self.scene, self.frame, keys)
             snaps = [self.at(t) for t in times]
-            if keys >= 33:
-                return times, snaps
-            finer, _ = shutter_times(self.scene, self.frame, 2 * keys - 1)
-            if all(self._deviation(snaps[i], snaps[i + 1], self.at(finer[2 * i + 1]), height) <= tolerance for i in range(keys - 1)):
-                return times, snaps
+            if keys >= 33 or self._holds(times, snaps, tolerance, height):
+                break
             keys = 2 * keys - 1
+        pieces = keyframe_grid_pieces(keyframe_frames(self.scene), times[0], length)
+        if keys > 2 and 0 < pieces and pieces + 1 < keys:
+            grid, _ = shutter_times(self.scene, self.frame, pieces + 1)
+            grid_snaps = [self.at(t) for t in grid]
+            if self._holds(grid, grid_snaps, tolerance, height):
+                self.on_keyframes = True
+                return grid, grid_snaps
+        return times, snaps
+
+    def _holds(self, times, snaps, tolerance, height):
+        """Whether every vertex half-way between two of the keys `times` lies within `tolerance`
+        pixels of the straight line between them."""
+        finer, _ = shutter_times(self.scene, self.frame, 2 * len(times) - 1)
+        return all(self._deviation(snaps[i], snaps[i + 1], self.at(finer[2 * i + 1]), height) <= tolerance
+                   for i in range(len(times) - 1))
 
     @staticmethod
     def _deviation(a, b, middle, height):
@@ -412,6 +457,7 @@ def build(engine, depsgraph, settings, height):
     finally:
         engine.frame_set(frame, subframe)
     report.keys = len(times)
+    report.keys_on_keyframes = keys.on_keyframes
     cameras = [camera for _, camera in snaps]
     bake = not camera_follows_streak(cameras)
     report.camera_baked = bake

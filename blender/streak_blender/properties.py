@@ -25,7 +25,8 @@ class StreakRenderSettings(bpy.types.PropertyGroup):
                                       "or where a thin part no pixel centre saw lies (0: every pixel takes them all; 0.02 refines what "
                                       "aliasing shows)", default=0.0, min=0.0, max=1.0, precision=3)
     keys: bpy.props.IntProperty(name="Motion Keys", description="Poses evaluated over the shutter: vertices move on straight lines between "
-                                "them (0: as many as Key Tolerance needs, up to 33)", default=0, min=0, max=65)
+                                "them (0: as many as Key Tolerance needs, up to 33, or fewer on the animation's keyframes where an even grid holds "
+                                "them within Key Tolerance)", default=0, min=0, max=65)
     key_tolerance: bpy.props.FloatProperty(name="Key Tolerance", description="With Motion Keys 0: keys are doubled until a vertex half-way "
                                            "between two keys is within this many pixels of its straight line", default=0.125, min=0.01, max=16.0)
     shading: bpy.props.EnumProperty(name="Shading", items=[("PHONG", "Phong", "streak's directional light and ambient"),

@@ -329,6 +329,45 @@ class Addon(unittest.TestCase):
         print(f"velocity sweep: the coverage's centre moves {shift:.2f} px, a quarter unit is {quarter:.2f} px")
         self.assertAlmostEqual(shift, quarter, delta=0.1 * quarter)
 
+    def test_keys_fall_on_linear_keyframes_that_halving_misses(self):
+        # A quad with LINEAR keyframes at frames 5, 6, 7 and 8 (x: 0, 1, 1, 0: out, held, back)
+        # under a shutter of 3 frames from frame 5. Its path kinks at frames 6 and 7, a third and
+        # two thirds of the shutter, which no grid of halving's (2, 3, 5 ... 33 keys) holds. The
+        # keys must be the four keyframes, the image the one a fixed 4 keys gives, and the
+        # coverage's centre where the quad spends its time on average: 2/3 unit from frame 5's.
+        scene = bpy.context.scene
+        scene.render.motion_blur_shutter = 3.0
+        scene.cycles.motion_blur_position = "START"
+        for other in ("Cube", "Cylinder", "Grid"):
+            bpy.data.objects[other].hide_render = True
+        scene.camera.animation_data_clear()
+        bpy.ops.mesh.primitive_plane_add(size=0.4, location=(-1.0, -1.0, -0.7))
+        quad = bpy.context.object
+        base = quad.location.x
+        for frame, x in ((5, 0.0), (6, 1.0), (7, 1.0), (8, 0.0)):
+            quad.location.x = base + x
+            quad.keyframe_insert("location", index=0, frame=frame)
+        scene_builder.linear(quad)
+        scene.frame_set(scene_builder.FRAME)
+        report = render_addon(os.path.join(TMP, "keyframes.exr"))
+        self.assertEqual(report["keys"], 4)
+        self.assertTrue(report["keys_on_keyframes"])
+        fixed = render_addon(os.path.join(TMP, "keyframes_fixed.exr"), keys=4)
+        self.assertFalse(fixed["keys_on_keyframes"])
+        blurred = streak.read_image(os.path.join(TMP, "keyframes.exr"))
+        self.assertEqual(psnr(blurred, streak.read_image(os.path.join(TMP, "keyframes_fixed.exr")))[0], float("inf"))
+        scene.render.use_motion_blur = False
+        render_addon(os.path.join(TMP, "keyframes_still.exr"), keys=0)
+        still = streak.read_image(os.path.join(TMP, "keyframes_still.exr"))[..., 3]
+        columns = np.arange(still.shape[1])
+        centre = lambda alpha: float((alpha.sum(axis=0) * columns).sum() / alpha.sum())
+        view = scene.camera.matrix_world.inverted() @ quad.matrix_world.translation
+        fov = 2.0 * math.atan(0.5 * scene.camera.data.sensor_width / scene.camera.data.lens)  # horizontal: the image is wider
+        expected = (2.0 / 3.0) * (0.5 * scene_builder.WIDTH) / (-view.z * math.tan(0.5 * fov))
+        shift = centre(blurred[..., 3]) - centre(still)
+        print(f"keyframe keys: the coverage's centre moves {shift:.2f} px, 2/3 unit is {expected:.2f} px")
+        self.assertAlmostEqual(shift, expected, delta=0.05 * expected)
+
     def test_changing_topology_is_reported_not_crashed_on(self):
         bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=0.5, location=(0.0, -1.0, -0.6))
         still = bpy.context.object
