@@ -61,7 +61,7 @@ def keyframe_frames(scene):
         for block in (obj, data, getattr(data, "shape_keys", None)):
             animation = getattr(block, "animation_data", None) if block is not None else None
             if animation and animation.action:
-                for fcurve in getattr(animation.action, "fcurves", ()):  # (a layered action has none here: halving stands)
+                for fcurve in getattr(animation.action, "fcurves", ()):  # (on Blender 4.4+, a layered action's first slot)
                     frames.update(point.co.x for point in fcurve.keyframe_points)
     return frames
 

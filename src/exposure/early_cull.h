@@ -23,8 +23,8 @@ inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const T
                          std::vector<std::uint64_t>& keys) {
     keys.resize(items.size());
     for (std::size_t i = 0; i < items.size(); ++i) {
-        const float nearness = segments[items[i]].nearness;
-        assert(nearness >= 0.0f);
+        const float nearness = segments[items[i]].nearness + 0.0f;  // (-0 becomes +0)
+        assert(nearness >= 0.0f);  // and not NaN
         keys[i] = (std::uint64_t(~std::bit_cast<std::uint32_t>(nearness)) << 32) | items[i];
     }
     std::sort(keys.begin(), keys.end());
