@@ -70,8 +70,9 @@ def keyframe_grid_pieces(frames, start, length, most=32):
     """The fewest even pieces (up to `most`) of the shutter [start, start + length] whose ends hold
     every keyframe strictly inside it (to a thousandth of a piece), or 0 where there is none inside
     or no such grid: the command line's rule (gltf_loader's keyframeGridPieces)."""
-    inside = [(f - start) / length for f in frames if length > 0.0]
-    inside = [u for u in inside if 1e-6 < u < 1.0 - 1e-6]
+    if not length > 0.0:
+        return 0
+    inside = [u for u in ((f - start) / length for f in frames) if 1e-6 < u < 1.0 - 1e-6]
     if not inside:
         return 0
     for pieces in range(1, most + 1):

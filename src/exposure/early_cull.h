@@ -17,8 +17,9 @@ namespace streak::exposure {
 // A tile's segments `items` in `out`, nearest first (by their nearest corner; at equal
 // nearness in their order), so that what hides others is mostly drawn before them.
 // The order is sorted as 64-bit keys, the nearness's bits inverted over the index: a
-// nearness is a float >= 0, whose bits order as the numbers do, so the keys order as the
-// comparison above without reading a segment at every step (a dense tile sorts many thousands).
+// nearness is a float >= 0, whose bits order as the numbers do, so the keys order by
+// nearness, largest first, then by index, without reading a segment at every step (a dense
+// tile sorts many thousands).
 inline void nearestFirst(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, std::vector<std::uint32_t>& out,
                          std::vector<std::uint64_t>& keys) {
     keys.resize(items.size());

@@ -68,8 +68,9 @@ TEST(LargeVector, HoldsWhatIsWrittenInBlocksSmallAndLarge) {
         values.push_back(0u);  // a reallocation keeps what was there
         ASSERT_EQ(values.size(), count + 1);
         for (std::size_t i = 0; i < count; ++i) ASSERT_EQ(values[i], std::uint32_t(i + 1));
-        if (count * sizeof(std::uint32_t) >= kLargeBlockBytes)
+        if (count * sizeof(std::uint32_t) >= kLargeBlockBytes) {
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % kLargeBlockBytes, 0u) << "a large block is aligned to a huge page";
+        }
     }
 }
 

@@ -71,7 +71,7 @@ struct Fragment {
 struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
                  intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0, mergedIntervals = 0,
-                 samplesHidden = 0;
+                 samplesHidden = 0, snappedAwayFaces = 0;
     exposure::PixelShadingCounters shading;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
@@ -177,6 +177,7 @@ public:
             total.intervals += c.intervals, total.maxIntervals = std::max(total.maxIntervals, c.maxIntervals);
             total.intervalOverflowSamples += c.intervalOverflowSamples, total.splits += c.splits, total.cycles += c.cycles;
             total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces, total.mergedIntervals += c.mergedIntervals;
+            total.snappedAwayFaces += c.snappedAwayFaces;
             total.samplesHidden += c.samplesHidden;
             total.shading.add(c.shading);
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
@@ -200,6 +201,7 @@ public:
         budget.record(stats, budgetTotal, kBytesPerFragment);
         stats.setCounter("motion_paths", double(frame.paths.size()));
         stats.setCounter("path_faces_rasterized", double(total.pathFaces));
+        stats.setCounter("path_faces_snapped_away", double(total.snappedAwayFaces));
         stats.setCounter("backfacing_paths_skipped", double(frame.segmented.numBackFacing()));
         stats.setCounter("fragments", double(total.fragments));
         stats.setCounter("fragments_per_sample_mean", double(total.fragments) / numSamples);
@@ -527,18 +529,36 @@ private:
                 // w = 1 in a large scene) must not cut them.
                 raster::setupTriangle(scratch.path.faces[f].clip, index, motion_path::kProjectedFaceNear, frame.viewport,
                                       raster::CullMode::None, scratch.setup);
+                auto addFragment = [&](int px, int py, int s) {
+                    const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
+                    if (isCullingEarly && earlyCull.isHidden(sample, nearest)) {
+                        ++counters.samplesHidden;
+                        return;
+                    }
+                    scratch.fragments.push_back({sample, index, segment.nearness});
+                    if (still) coverByStillPath(frame, segment, *still, tri, rect, sample, scratch);
+                };
                 for (int k = 0; k < scratch.setup.count; ++k) {
                     raster::ScreenTriangle& face = scratch.setup.triangles[k].screen;
                     raster::makeConservative(face, frame.viewport);
-                    raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) {
-                        const std::uint32_t sample = std::uint32_t((std::size_t(py - rect.y0) * tileWidth + (px - rect.x0)) * spp + s);
-                        if (isCullingEarly && earlyCull.isHidden(sample, nearest)) {
-                            ++counters.samplesHidden;
-                            return;
-                        }
-                        scratch.fragments.push_back({sample, index, segment.nearness});
-                        if (still) coverByStillPath(frame, segment, *still, tri, rect, sample, scratch);
-                    });
+                    raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) { addFragment(px, py, s); });
+                }
+                if (scratch.setup.count == 0) {
+                    // A face thinner than the fixed-point grid snaps to no area and the rasterizer
+                    // drops it, though its samples may be the exact face's alone (a sub-pixel
+                    // sliver on a sphere's silhouette showed its back face through the hole).
+                    // Conservatively, every sample of the pixels its corners span (within the
+                    // path's): the build tests each exactly.
+                    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+                    for (const glm::vec4& corner : scratch.path.faces[f].clip) {
+                        const glm::dvec2 p = raster::rasterFromClip(corner, frame.viewport);
+                        lo = glm::min(lo, p), hi = glm::max(hi, p);
+                    }
+                    const raster::PixelBounds b = raster::pixelBoundsOfRaster(lo, hi, frame.viewport);
+                    for (int py = std::max(b.y0, scan.y0); py <= std::min(b.y1, scan.y1); ++py)
+                        for (int px = std::max(b.x0, scan.x0); px <= std::min(b.x1, scan.x1); ++px)
+                            for (int s = 0; s < spp; ++s) addFragment(px, py, s);
+                    ++counters.snappedAwayFaces;
                 }
             }
         }

@@ -59,6 +59,38 @@ TEST(MotionPathRenderer, TwistingTriangleIsSeenTwice) {
     EXPECT_GT(psnr(mp, ref), 40.0);
 }
 
+TEST(MotionPathRenderer, ASliverThinnerThanTheFixedPointGridStillCoversItsSamples) {
+    // A still red triangle 0.0025 px high in front of a blue quad: its corners snap to one row
+    // of the 1/256-pixel grid the faces are rasterized on, so the rasterizer sees no area, yet
+    // the pixel centre (10.5, 10.5) lies inside it (between its lower edge at y = 10.499 and
+    // its long edge, at y = 10.50025 there). The sample is red, as the exact triangle says and
+    // analytic draws it; it showed the quad through the hole (on a dense sphere's silhouette,
+    // the sphere's back face).
+    const int width = 32, height = 24;
+    const test::PixelCamera near{width, height, 2.0f}, far{width, height, 4.0f};
+    Scene scene = test::emptyScene();
+    test::addPixelQuad(scene, far, test::addMaterial(scene, glm::vec3(0, 0, 1)), -1.0f, -1.0f, 33.0f, 25.0f);
+    Mesh sliver;
+    sliver.material = test::addMaterial(scene, glm::vec3(1, 0, 0));
+    // Counter-clockwise on screen (y up): A, C, B with raster y down.
+    const glm::vec3 a = near.at(10.3f, 10.499f), b = near.at(10.7f, 10.499f), c = near.at(10.7f, 10.5015f);
+    sliver.positions = {a, c, b, a, c, b};
+    sliver.triangles = {glm::uvec3(0, 1, 2)};
+    scene.meshes.push_back(sliver);
+    validateScene(scene);
+    for (const char* method : {"motion-path", "analytic"}) {
+        SCOPED_TRACE(method);
+        RenderStats stats;
+        const Image image = render(method, scene, width, height, OptionMap(), &stats);
+        EXPECT_NEAR(image.at(10, 10).x, 1.0f, 1e-6f);
+        EXPECT_NEAR(image.at(10, 10).z, 0.0f, 1e-6f);
+        EXPECT_NEAR(image.at(10, 11).z, 1.0f, 1e-6f);  // the pixel below: the quad
+        if (std::string(method) == "motion-path") {
+            EXPECT_EQ(stats.counter("path_faces_snapped_away"), 1.0);
+        }
+    }
+}
+
 TEST(MotionPathRenderer, StaticSceneMatchesTheReference) {
     Scene scene = makeBuiltinScene("rotating-cube", OptionMap());
     for (Mesh& mesh : scene.meshes)
