@@ -1,5 +1,6 @@
 #include "exposure/segmented_geometry.h"
 
+#include "exposure/closed_surfaces.h"
 #include "raster/moving_triangle.h"
 
 #include <glm/common.hpp>
@@ -108,7 +109,8 @@ SegmentedGeometry::SegmentPlan SegmentedGeometry::plan(const Scene& scene, int c
     return plan;
 }
 
-SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments, double mergeTolerancePixels)
+SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments, double mergeTolerancePixels,
+                                     bool cullClosed)
     : m_flat(scene) {
     m_plan = plan(scene, curveSegments, viewport);
     m_numSegments = m_plan.numSegments;
@@ -146,6 +148,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
     // a fixed linear map of the view, plus the camera's own linear travel), so the world corners
     // shading takes at a merged segment's ends hold between them too; a turning one does not.
     if (n > 1 && mergeTolerancePixels > 0.0 && !scene.camera.isTurning()) mergeLinearRuns(viewport, mergeTolerancePixels);
+    if (cullClosed) cullClosedBackFaces(scene.camera);
     std::atomic<std::int64_t> backFacing{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m_segments.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
         std::int64_t localBackFacing = 0;
@@ -154,6 +157,36 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
     });
     m_numBackFacing = backFacing.load();
     m_hasWholeShutterSegments = n == 1 || std::any_of(m_segments.begin(), m_segments.end(), [](const TriangleSegment& s) { return s.t0 == 0.0f && s.t1 == 1.0f; });
+}
+
+void SegmentedGeometry::cullClosedBackFaces(const Camera& camera) {
+    const ClosedSurfaces closed(m_flat, m_positions);
+    if (closed.count() == 0) return;
+    const std::size_t n = std::size_t(m_numSegments);
+    // A surface's back faces are hidden where the near plane stays clear of it all the shutter:
+    // every corner of every segment beyond it, so every point (clip space is linear over a
+    // segment). That also keeps the eye outside it: a closed surface around the eye would
+    // reach behind it, where view depth is negative.
+    std::vector<std::uint8_t> isCulled(closed.count(), 0);
+    tbb::parallel_for(std::uint32_t(0), closed.count(), [&](std::uint32_t s) {
+        for (const std::uint32_t t : closed.trianglesOf(s))
+            for (std::size_t k = 0; k < n; ++k)
+                for (const auto* corners : {&m_segments[t * n + k].clip0, &m_segments[t * n + k].clip1})
+                    for (const glm::vec4& c : *corners)
+                        if (!(c.w > camera.zNear)) return;
+        isCulled[s] = 1;
+    });
+    std::atomic<std::int64_t> surfaces{0}, triangles{0};
+    tbb::parallel_for(std::uint32_t(0), closed.count(), [&](std::uint32_t s) {
+        if (!isCulled[s]) return;
+        ++surfaces, triangles += std::int64_t(closed.trianglesOf(s).size());
+        for (const std::uint32_t t : closed.trianglesOf(s))
+            for (std::size_t k = 0; k < n; ++k) {
+                TriangleSegment& segment = m_segments[t * n + k];
+                segment.isBackFacingThroughout = segment.isBackFacingThroughout || segment.orientation < 0;
+            }
+    });
+    m_numClosedSurfaces = surfaces.load(), m_numClosedTriangles = triangles.load();
 }
 
 void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels) {
@@ -297,6 +330,8 @@ LargeVector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::V
 void recordSegments(RenderStats& stats, const SegmentedGeometry& segmented) {
     stats.setCounter("segments_per_triangle", segmented.numSegments());
     stats.setCounter("segments_merged", double(segmented.numMergedAway()));
+    stats.setCounter("closed_surfaces", double(segmented.numClosedSurfaces()));
+    stats.setCounter("closed_surface_triangles", double(segmented.numClosedTriangles()));
     recordSegmentPlan(stats, segmented.segmentPlan());
 }
 

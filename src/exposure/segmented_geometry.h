@@ -27,7 +27,7 @@ struct TriangleSegment {
     std::array<glm::vec4, 3> clip0{}, clip1{};
     float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
     std::int8_t orientation = 0;                     ///< +1 front facing throughout, -1 back facing throughout, 0 turns over (or reaches behind the eye)
-    bool isBackFacingThroughout = false;             ///< single-sided and seen from behind at every time: never visible
+    bool isBackFacingThroughout = false;             ///< single-sided, or on a closed surface (ClosedSurfaces), and seen from behind at every time: never visible
     // Its ends as segment ends k / numSegments: key1 = key0 + 1, or more where the triangle's
     // motion stays linear over several segments and they are merged into one
     // (SegmentedGeometry, kMergeTolerancePixels). Every slot of a merged run holds the merged
@@ -77,8 +77,11 @@ public:
     // Keys are shared by every vertex of a scene, so a morph or a skinned mesh is cut everywhere
     // its fastest-changing vertices need; its still parts and its parts moving linearly need
     // one segment, which also lets them cover the whole shutter (the early cull, line samples).
+    // With cullClosed, a segment facing away all its time on a closed opaque surface that the
+    // eye stays outside of and the near plane clear of is dropped as a single-sided one is
+    // (ClosedSurfaces): its own front faces hide it.
     SegmentedGeometry(const Scene& scene, const raster::Viewport& viewport, int curveSegments,
-                      double mergeTolerancePixels = kMergeTolerancePixels);
+                      double mergeTolerancePixels = kMergeTolerancePixels, bool cullClosed = true);
 
     const SegmentPlan& segmentPlan() const { return m_plan; }
     const Scene& scene() const { return m_flat.scene(); }
@@ -105,6 +108,9 @@ public:
     };
     WorldCorners cornersOf(const TriangleSegment& segment) const;
     std::int64_t numBackFacing() const { return m_numBackFacing; }
+    // The closed surfaces whose back faces were dropped (cullClosed), and their triangles.
+    std::int64_t numClosedSurfaces() const { return m_numClosedSurfaces; }
+    std::int64_t numClosedTriangles() const { return m_numClosedTriangles; }
 
     // The pixels each segment may cover over its time, for binning: with all corners in front of
     // the eye each corner's screen path is a straight segment between its ends, so the box of
@@ -120,9 +126,11 @@ private:
     std::vector<VertexArray> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
     std::int64_t m_numMergedAway = 0;
+    std::int64_t m_numClosedSurfaces = 0, m_numClosedTriangles = 0;
     bool m_hasWholeShutterSegments = false;
 
     void mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels);
+    void cullClosedBackFaces(const Camera& camera);
 };
 
 // --stats: segments_per_triangle (the plan's), curve_segments (pieces per key segment), where

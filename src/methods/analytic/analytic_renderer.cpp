@@ -47,6 +47,7 @@ struct Options {
     bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
+    bool closedCull = true;  ///< drop the back faces closed surfaces hide (exposure/closed_surfaces.h)
 };
 
 struct Counters {
@@ -78,7 +79,7 @@ public:
         if (settings.passes.any()) frame.passes.emplace(scene, settings.passes, settings.width, settings.height);
         {
             PhaseTimer timer(context.stats, "setup");
-            frame.segmented.emplace(scene, viewport, m_options.curveSegments);
+            frame.segmented.emplace(scene, viewport, m_options.curveSegments, exposure::SegmentedGeometry::kMergeTolerancePixels, m_options.closedCull);
             frame.spanShading = m_options.spanShading;
             frame.computeBounds();
         }
@@ -437,6 +438,7 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.hullCull = options.getInt("hull-cull", 1, 0, 1) != 0;
     o.resolve.occlusionCull = options.getInt("occlusion-cull", 1, 0, 1) != 0;
     o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
+    o.closedCull = options.getInt("closed-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
     o.spanShading = exposure::spanShadingSettings(options, "analytic");

@@ -55,6 +55,7 @@ struct Options {
     bool earlyCull = true;  ///< skip the samples where nearer opaque triangles hide a path all the shutter (renderRect)
     bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
+    bool closedCull = true;  ///< drop the back faces closed surfaces hide (exposure/closed_surfaces.h)
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     exposure::PixelShadingOptions shading;
 };
@@ -239,7 +240,8 @@ private:
         Frame(const Scene& scene, const RenderSettings& settings, const Options& options)
             : scene(scene), settings(settings), options(options), viewport{settings.width, settings.height},
               pattern(raster::samplePatternFor(settings.aa, settings.isGridPattern)),
-              segmented(scene, raster::Viewport{settings.width, settings.height}, options.curveSegments),
+              segmented(scene, raster::Viewport{settings.width, settings.height}, options.curveSegments,
+                        exposure::SegmentedGeometry::kMergeTolerancePixels, options.closedCull),
               geometry(segmented.flat()), paths(segmented.segments()), spanShading(options.spanShading) {}
 
         // Paths are binned by their screen boxes and built into faces tile by tile, so memory
@@ -786,6 +788,7 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
         throw Error("method 'motion-path': mask-bits must be 32, 64, 128 or 256, got " + std::to_string(o.maskBits));
     o.sortIntervals = options.getInt("sort", 1, 0, 1) != 0;
     o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
+    o.closedCull = options.getInt("closed-cull", 1, 0, 1) != 0;
     o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.spanShading = exposure::spanShadingSettings(options, "motion-path");
