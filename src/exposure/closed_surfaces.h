@@ -22,11 +22,13 @@ namespace streak::exposure {
 // Cycles, which renders both sides, shows the same image.
 //
 // ClosedSurfaces finds them in a frame's double-sided meshes (single-sided ones drop their back
-// faces already), per mesh: a connected set of triangles whose corners, welded where they share
-// a position at every pose, give each directed edge once and its reverse once (a closed,
-// oriented 2-manifold; degenerate triangles left out), whose material is opaque (not blended,
-// not masked: a cut-out would open it) and whose signed volume is positive at every pose (its
-// front faces point outwards). Which of them a frame may cull also needs the near plane clear
+// faces already), per mesh: triangles joined across their edges whose corners, welded where
+// they share a position at every pose, give each directed edge once and its reverse once (a
+// closed, oriented surface; degenerate triangles left out; shells touching at a corner are
+// separate), whose material is opaque (not blended, not masked: a cut-out would open it) and
+// whose signed volume is positive at every pose (its front faces point outwards; between two
+// poses, where the volume is a cubic in time, it is not measured: only a surface passing
+// through itself inside out could turn it negative there). Which of them a frame may cull also needs the near plane clear
 // of the surface all the shutter (SegmentedGeometry): a surface the near plane cuts shows its
 // inside through the cut, and a surface around the eye reaches behind it, so where the near
 // plane is clear the eye is outside.

@@ -39,14 +39,15 @@ void addCube(Mesh& mesh, glm::vec3 centre, float h, glm::vec3 move = glm::vec3(0
     mesh.positions = std::move(positions);
 }
 
-Scene cubeScene(bool isDoubleSided, float opacity, const std::function<void(Mesh&)>& change) {
+Scene cubeScene(bool isDoubleSided, float opacity, const std::function<void(Mesh&)>& change,
+                glm::vec3 move = glm::vec3(0.5f, 0.25f, 0.0f)) {
     Scene scene = test::emptyScene();
     const std::uint32_t material = test::addMaterial(scene, glm::vec3(0.8f), opacity);
     scene.materials[material].doubleSided = isDoubleSided;
     Mesh mesh;
     mesh.numKeys = 2;
     mesh.material = material;
-    addCube(mesh, glm::vec3(0.3f, -0.2f, -5.0f), 1.0f, glm::vec3(0.5f, 0.25f, 0.0f));
+    addCube(mesh, glm::vec3(0.3f, -0.2f, -5.0f), 1.0f, move);
     change(mesh);
     scene.meshes.push_back(std::move(mesh));
     validateScene(scene);
@@ -107,6 +108,23 @@ TEST(ClosedSurfaces, LeavesOutWhatIsOpenFlippedSeeThroughOrPulledApart) {
     for (int t = 0; t < 23; ++t) EXPECT_EQ(of[std::size_t(t)], t < 12 ? 0u : ClosedSurfaces::kNone) << t;
 }
 
+// Shells join across edges, never at a corner alone: a small cube touching the cube at one
+// corner is a surface of its own, or none where it is wound inward (whose volume, summed with
+// the cube's, would still be positive).
+TEST(ClosedSurfaces, ShellsTouchingAtACornerAreMeasuredApart) {
+    for (const bool isInward : {false, true}) {
+        SCOPED_TRACE(isInward ? "inward" : "outward");
+        const glm::vec3 corner = glm::vec3(0.3f, -0.2f, -5.0f) + glm::vec3(1.0f);  // the cube's (+, +, +) corner
+        const auto [count, of] = surfacesOf(cubeScene(true, 1.0f, [&](Mesh& mesh) {
+            addCube(mesh, corner + glm::vec3(0.25f), 0.25f, glm::vec3(0.5f, 0.25f, 0.0f));
+            if (isInward)
+                for (std::size_t t = 12; t < 24; ++t) std::swap(mesh.triangles[t].y, mesh.triangles[t].z);
+        }));
+        EXPECT_EQ(count, isInward ? 1u : 2u);
+        for (int t = 0; t < 24; ++t) EXPECT_EQ(of[std::size_t(t)], t < 12 ? 0u : isInward ? ClosedSurfaces::kNone : 1u) << t;
+    }
+}
+
 // In a frame, the closed surface's segments that face away all the shutter are dropped, as a
 // single-sided triangle's are, and no others; not where the near plane cuts the surface, nor
 // with cullClosed off.
@@ -134,6 +152,15 @@ TEST(ClosedSurfaces, AFrameDropsTheSegmentsFacingAwayOnlyWhereTheNearPlaneIsClea
     const SegmentedGeometry cutGeometry(cut, viewport, 1);
     EXPECT_EQ(cutGeometry.numClosedSurfaces(), 0);
     EXPECT_EQ(cutGeometry.numBackFacing(), 0);
+
+    // The cube coming towards the eye, clear of the near plane at the open (depth 4 and more)
+    // and cut by it at the close (its front at depth 2.2).
+    Scene coming = cubeScene(true, 1.0f, [](Mesh&) {}, glm::vec3(0.0f, 0.0f, 1.8f));
+    coming.camera.zNear = 2.5f;
+    const SegmentedGeometry comingGeometry(coming, viewport, 1);
+    EXPECT_EQ(comingGeometry.numClosedSurfaces(), 0);
+    coming.camera.zNear = 2.0f;
+    EXPECT_EQ(SegmentedGeometry(coming, viewport, 1).numClosedSurfaces(), 1);
 }
 
 }  // namespace streak::exposure
