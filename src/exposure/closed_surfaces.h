@@ -47,7 +47,6 @@ public:
     std::span<const std::uint32_t> trianglesOf(std::uint32_t s) const {
         return std::span<const std::uint32_t>(m_triangles).subspan(m_first[s], m_first[s + 1] - m_first[s]);
     }
-    std::size_t numTriangles() const { return m_triangles.size(); }
 
 private:
     std::vector<std::uint32_t> m_surfaceOf;  ///< per triangle

@@ -167,18 +167,13 @@ void SegmentedGeometry::cullClosedBackFaces(const Camera& camera) {
     // every corner of every segment beyond it, so every point (clip space is linear over a
     // segment). That also keeps the eye outside it: a closed surface around the eye would
     // reach behind it, where view depth is negative.
-    std::vector<std::uint8_t> isCulled(closed.count(), 0);
+    std::atomic<std::int64_t> surfaces{0}, triangles{0};
     tbb::parallel_for(std::uint32_t(0), closed.count(), [&](std::uint32_t s) {
         for (const std::uint32_t t : closed.trianglesOf(s))
             for (std::size_t k = 0; k < n; ++k)
                 for (const auto* corners : {&m_segments[t * n + k].clip0, &m_segments[t * n + k].clip1})
                     for (const glm::vec4& c : *corners)
                         if (!(c.w > camera.zNear)) return;
-        isCulled[s] = 1;
-    });
-    std::atomic<std::int64_t> surfaces{0}, triangles{0};
-    tbb::parallel_for(std::uint32_t(0), closed.count(), [&](std::uint32_t s) {
-        if (!isCulled[s]) return;
         ++surfaces, triangles += std::int64_t(closed.trianglesOf(s).size());
         for (const std::uint32_t t : closed.trianglesOf(s))
             for (std::size_t k = 0; k < n; ++k) {

@@ -35,10 +35,14 @@ SamplePattern SamplePattern::grid(int n) {
 
 SamplePattern samplePatternFor(int n, bool isGrid) { return isGrid ? SamplePattern::grid(n) : SamplePattern::rooks(n); }
 
-glm::dvec2 SamplePattern::ndcOf(int px, int py, int s, int width, int height) const {
+glm::dvec2 SamplePattern::rasterOf(int px, int py, int s) const {
     const glm::i64vec2 offset = offsets[std::size_t(s)];
-    return ndcFromRaster(double(std::int64_t(px) * kSubpixelScale + offset.x) / kSubpixelScale,
-                         double(std::int64_t(py) * kSubpixelScale + offset.y) / kSubpixelScale, width, height);
+    return {double(std::int64_t(px) * kSubpixelScale + offset.x) / kSubpixelScale, double(std::int64_t(py) * kSubpixelScale + offset.y) / kSubpixelScale};
+}
+
+glm::dvec2 SamplePattern::ndcOf(int px, int py, int s, int width, int height) const {
+    const glm::dvec2 raster = rasterOf(px, py, s);
+    return ndcFromRaster(raster.x, raster.y, width, height);
 }
 
 }  // namespace streak::raster

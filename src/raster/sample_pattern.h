@@ -34,6 +34,8 @@ struct SamplePattern {
     // The spacing of the samples along each axis in fixed-point units (a pixel over n): the
     // texture footprint of one sample, since the box filter integrates the samples.
     std::int64_t footprintStep() const { return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(m_samplesPerAxis))); }
+    // The raster position (pixels, y down) of sample s of pixel (px, py).
+    glm::dvec2 rasterOf(int px, int py, int s) const;
     // The NDC position of sample s of pixel (px, py) in a width x height image.
     glm::dvec2 ndcOf(int px, int py, int s, int width, int height) const;
 

@@ -1,8 +1,12 @@
 #include "raster/screen_triangle.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 namespace streak::raster {
 
@@ -33,15 +37,29 @@ PerspectiveSample ScreenTriangle::interpolate(const EdgeValues& e) const {
     return s;
 }
 
+namespace {
+
+// A raster point on the fixed-point grid.
+std::int64_t snapped(double raster) { return std::llround(raster * double(kSubpixelScale)); }
+
+// Twice the signed area of a triangle of snapped corners.
+std::int64_t snappedArea2(const std::array<std::int64_t, 3>& x, const std::array<std::int64_t, 3>& y) {
+    return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+}
+
+double cross(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+}  // namespace
+
 bool setupScreenTriangle(const std::array<glm::vec4, 3>& clip, const Viewport& viewport, ScreenTriangle& out) {
     std::array<std::int64_t, 3> x{}, y{};
     for (int i = 0; i < 3; ++i) {
         const glm::dvec2 p = rasterFromClip(clip[i], viewport);
-        x[i] = std::llround(p.x * double(kSubpixelScale));
-        y[i] = std::llround(p.y * double(kSubpixelScale));
+        x[i] = snapped(p.x);
+        y[i] = snapped(p.y);
         out.invW[i] = 1.0f / clip[i].w;
     }
-    const std::int64_t area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    const std::int64_t area2 = snappedArea2(x, y);
     if (area2 == 0) return false;
     // y points down in raster space, so counter-clockwise in NDC has negative area here.
     out.isFrontFacing = area2 < 0;
@@ -73,6 +91,36 @@ void makeConservative(ScreenTriangle& tri, const Viewport& viewport) {
     for (int i = 0; i < 3; ++i) tri.bias[i] = std::abs(tri.a[i]) + std::abs(tri.b[i]);
     tri.bounds.x0 = std::max(0, tri.bounds.x0 - 1), tri.bounds.y0 = std::max(0, tri.bounds.y0 - 1);
     tri.bounds.x1 = std::min(viewport.width - 1, tri.bounds.x1 + 1), tri.bounds.y1 = std::min(viewport.height - 1, tri.bounds.y1 + 1);
+}
+
+bool SnappedAwayTriangle::setup(const std::array<glm::vec4, 3>& clip, const Viewport& viewport) {
+    std::array<std::int64_t, 3> x{}, y{};
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec2 p = rasterFromClip(clip[std::size_t(i)], viewport);
+        if (!(std::abs(p.x) <= 1e9 && std::abs(p.y) <= 1e9)) return false;  // (and not NaN)
+        m_corners[std::size_t(i)] = p;
+        x[std::size_t(i)] = snapped(p.x), y[std::size_t(i)] = snapped(p.y);
+        lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    if (snappedArea2(x, y) != 0) return false;
+    m_area = cross(m_corners[1] - m_corners[0], m_corners[2] - m_corners[0]);
+    m_bounds = pixelBoundsOfRaster(lo - kReach, hi + kReach, viewport);
+    return true;
+}
+
+bool SnappedAwayTriangle::covers(const glm::dvec2& q) const {
+    bool isInside = m_area != 0.0;
+    for (int i = 0; i < 3 && isInside; ++i)
+        isInside = cross(m_corners[std::size_t((i + 1) % 3)] - m_corners[std::size_t(i)], q - m_corners[std::size_t(i)]) * m_area >= 0.0;
+    if (isInside) return true;
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec2 a = m_corners[std::size_t(i)], d = m_corners[std::size_t((i + 1) % 3)] - a;
+        const double length2 = glm::dot(d, d);
+        const double t = length2 > 0.0 ? std::clamp(glm::dot(q - a, d) / length2, 0.0, 1.0) : 0.0;
+        if (glm::distance(q, a + t * d) <= kReach) return true;
+    }
+    return false;
 }
 
 }  // namespace streak::raster

@@ -73,6 +73,26 @@ struct ScreenTriangle {
 // neither.
 void makeConservative(ScreenTriangle& tri, const Viewport& viewport);
 
+// A triangle thinner than the fixed-point grid snaps to no area, so setupScreenTriangle sets up
+// nothing and there is no cover to widen, though the exact triangle may hold samples no other
+// triangle does. Its conservative cover is then the samples within two grid units of the
+// unsnapped triangle (twice the snapping's reach, as makeConservative widens one).
+class SnappedAwayTriangle {
+public:
+    // False where the corners snap to an area (the triangle was set aside for another reason,
+    // as lying off the screen) or are not finite.
+    bool setup(const std::array<glm::vec4, 3>& clip, const Viewport& viewport);
+    // The pixels the cover may reach.
+    const PixelBounds& bounds() const { return m_bounds; }
+    bool covers(const glm::dvec2& raster) const;
+
+private:
+    static constexpr double kReach = 2.0 / double(kSubpixelScale);  ///< pixels
+    std::array<glm::dvec2, 3> m_corners{};  ///< raster, unsnapped
+    double m_area = 0.0;                    ///< twice the signed area; 0 where the corners are in line
+    PixelBounds m_bounds;
+};
+
 // Raster position of a clip-space point (x right, y down, in pixels). Precondition: w > 0.
 glm::dvec2 rasterFromClip(const glm::vec4& clip, const Viewport& viewport);
 

@@ -107,6 +107,7 @@ struct TileScratch {
     exposure::MovingTriangleCache movingTriangles;  ///< the tile's paths' edge equations
     MotionPath path;
     raster::TriangleSetup setup;
+    raster::SnappedAwayTriangle snappedAway;  ///< a path face the grid snaps to no area (raster::SnappedAwayTriangle)
     Counters counters;
     exposure::TileBudgetCounters budget;
 };
@@ -368,57 +369,6 @@ private:
         }
     }
 
-    // A face thinner than the fixed-point grid snaps to no area and the rasterizer sets up
-    // nothing, though its samples may be the exact face's alone (a sub-pixel sliver on a dense
-    // sphere's silhouette showed the back face through the hole). Its samples in `scan` within
-    // a grid unit of the exact face (twice the snapping's reach, as makeConservative widens a
-    // face) go to addFragment(px, py, s), to be tested exactly. A face off the screen, or one
-    // with corners not finite, adds nothing.
-    template <class AddFragment>
-    static void addSnappedAwayFace(const std::array<glm::vec4, 3>& clip, const Frame& frame, const raster::PixelBounds& scan,
-                                   AddFragment&& addFragment, Counters& counters) {
-        std::array<glm::dvec2, 3> p;
-        glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-        std::array<glm::i64vec2, 3> snapped;
-        for (int i = 0; i < 3; ++i) {
-            p[std::size_t(i)] = raster::rasterFromClip(clip[std::size_t(i)], frame.viewport);
-            if (!std::isfinite(p[std::size_t(i)].x) || !std::isfinite(p[std::size_t(i)].y) || std::abs(p[std::size_t(i)].x) > 1e9 ||
-                std::abs(p[std::size_t(i)].y) > 1e9)
-                return;
-            lo = glm::min(lo, p[std::size_t(i)]), hi = glm::max(hi, p[std::size_t(i)]);
-            snapped[std::size_t(i)] = glm::i64vec2(std::llround(p[std::size_t(i)].x * double(raster::kSubpixelScale)),
-                                                   std::llround(p[std::size_t(i)].y * double(raster::kSubpixelScale)));
-        }
-        const glm::i64vec2 u = snapped[1] - snapped[0], v = snapped[2] - snapped[0];
-        if (u.x * v.y - u.y * v.x != 0) return;  // it has area on the grid: set aside for another reason (off the screen)
-        constexpr double kReach = 2.0 / double(raster::kSubpixelScale);
-        auto cross = [](const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; };
-        const double area = cross(p[1] - p[0], p[2] - p[0]);
-        auto isNear = [&](const glm::dvec2& q) {
-            double e[3];
-            for (int i = 0; i < 3; ++i) e[i] = cross(p[std::size_t((i + 1) % 3)] - p[std::size_t(i)], q - p[std::size_t(i)]);
-            if (area != 0.0 && e[0] * area >= 0.0 && e[1] * area >= 0.0 && e[2] * area >= 0.0) return true;
-            for (int i = 0; i < 3; ++i) {
-                const glm::dvec2 a = p[std::size_t(i)], d = p[std::size_t((i + 1) % 3)] - a;
-                const double length2 = glm::dot(d, d);
-                const double t = length2 > 0.0 ? std::clamp(glm::dot(q - a, d) / length2, 0.0, 1.0) : 0.0;
-                if (glm::distance(q, a + t * d) <= kReach) return true;
-            }
-            return false;
-        };
-        const raster::PixelBounds b = raster::pixelBoundsOfRaster(lo - kReach, hi + kReach, frame.viewport);
-        bool isSeen = false;
-        for (int py = std::max(b.y0, scan.y0); py <= std::min(b.y1, scan.y1); ++py)
-            for (int px = std::max(b.x0, scan.x0); px <= std::min(b.x1, scan.x1); ++px)
-                for (int s = 0; s < frame.pattern.count(); ++s) {
-                    const glm::i64vec2 offset = frame.pattern.offsets[std::size_t(s)];
-                    const glm::dvec2 q(double(std::int64_t(px) * raster::kSubpixelScale + offset.x) / double(raster::kSubpixelScale),
-                                       double(std::int64_t(py) * raster::kSubpixelScale + offset.y) / double(raster::kSubpixelScale));
-                    if (isNear(q)) addFragment(px, py, s), isSeen = true;
-                }
-        counters.snappedAwayFaces += isSeen;
-    }
-
     // A still path's interval at a line sample (a line tile's, exposure/line_samples.h): the
     // stretch of the line through ndc that it covers, its times the ends' shares of the pixel.
     static void buildLineInterval(const Frame& frame, std::uint32_t index, const raster::MovingTriangle& still, const glm::dvec2& ndc,
@@ -596,7 +546,17 @@ private:
                     raster::makeConservative(face, frame.viewport);
                     raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) { addFragment(px, py, s); });
                 }
-                if (scratch.setup.count == 0) addSnappedAwayFace(scratch.path.faces[f].clip, frame, scan, addFragment, counters);
+                // A face thinner than the grid is not set up: its own cover then (a sub-pixel sliver
+                // on a dense sphere's silhouette showed the back face through the hole).
+                if (scratch.setup.count == 0 && scratch.snappedAway.setup(scratch.path.faces[f].clip, frame.viewport)) {
+                    const raster::PixelBounds& b = scratch.snappedAway.bounds();
+                    bool isSeen = false;
+                    for (int py = std::max(b.y0, scan.y0); py <= std::min(b.y1, scan.y1); ++py)
+                        for (int px = std::max(b.x0, scan.x0); px <= std::min(b.x1, scan.x1); ++px)
+                            for (int s = 0; s < spp; ++s)
+                                if (scratch.snappedAway.covers(frame.pattern.rasterOf(px, py, s))) addFragment(px, py, s), isSeen = true;
+                    counters.snappedAwayFaces += isSeen;
+                }
             }
         }
         if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, items.size(), items.size())) {
