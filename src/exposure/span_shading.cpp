@@ -237,7 +237,16 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     // The uv path's length in texels along its longer axis, through the middle.
     const glm::vec2 a = glm::abs(ends[1].uv - ends[0].uv) * size, b = glm::abs(ends[2].uv - ends[1].uv) * size;
     const float pathTexels = std::max(a.x + b.x, a.y + b.y);
-    const int taps = std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
+    // A box takes one grid for the whole span (Texture::boxGrid): the box's level and taps at the
+    // widest it is at the span's ends and middle, and the times along the path.
+    Texture::BoxGrid boxGrid;
+    if (isBox) {
+        float lengthX = 0.0f, lengthY = 0.0f;
+        for (const SurfacePoint& end : ends)
+            lengthX = std::max(lengthX, glm::length(end.duvdx * size)), lengthY = std::max(lengthY, glm::length(end.duvdy * size));
+        boxGrid = texture.boxGrid(lengthX, lengthY, pathTexels, settings.tapsPerTexel, settings.maxTextureTaps);
+    }
+    const int taps = isBox ? boxGrid.tapsAlong : std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
     // The level the path's length asks for (k taps along it; the lookup keeps level 0 as floor).
     const float pathLod = std::log2(std::max(pathTexels / float(settings.maxTextureTaps), 1e-8f));
     const std::array<glm::vec2, 3>* clipTo = isBox ? point.uvTriangle() : nullptr;
@@ -245,11 +254,11 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     for (int i = 0; i < taps; ++i) {
         const float f = (float(i) + 0.5f) / float(taps);
         glm::vec2 uv = ends[1].uv;
-        // (The middle tap's uv is the middle end's, unless a clipped box wants it not held.)
-        if ((clipTo || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
+        // (The middle tap's uv is the middle end's, unless a box wants it not held.)
+        if ((isBox || 2 * i + 1 != taps) && !point.uvAt(window.timeBetween(t0, t1, f), uv)) continue;
         const TextureFootprint footprint{duvdxAt(f), duvdyAt(f), pathLod, isBox, clipTo};
         float weight = 1.0f;
-        const glm::vec4 texel = clipTo ? texture.sampleBox(uv, footprint, &weight) : texture.sample(uv, footprint);
+        const glm::vec4 texel = isBox ? texture.sampleBox(uv, footprint, boxGrid, &weight) : texture.sample(uv, footprint);
         accumulate(texel, f, std::max(weight, kLeastCoverage));
     }
     return result();

@@ -223,32 +223,48 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     return sum / float(taps);
 }
 
-glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, float* inside) const {
-    if (inside) *inside = 1.0f;
-    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
-    const glm::vec2 size{float(width()), float(height())};
-    const float lengthX = glm::length(footprint.duvdx * size), lengthY = glm::length(footprint.duvdy * size);
-    if (!std::isfinite(lengthX) || !std::isfinite(lengthY)) return trilinearAt(uv, float(numLevels() - 1));
-    // The finest level (spacing 2^level texels) at which both axes take at most kMaxBoxTaps taps
-    // in all: each axis as many taps as it is spacings long, at least one.
+Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps) const {
     const int maxLevel = numLevels() - 1;
-    // minLod is not a box's floor: it widens a lookup for the spacing of the taps along a uv path,
-    // and in every direction, which blurs a box across the motion too (AnimatedCube against
-    // Cycles: 47.6 dB with it, 52.3 dB without).
-    int level = 0;
+    if (!std::isfinite(lengthX) || !std::isfinite(lengthY) || !std::isfinite(pathTexels)) return {maxLevel, 1, 1, 1};
     // (At most kMaxBoxTaps + 1 an axis, which is as good as any more for the test below: an edge-on
     // triangle's footprint can be a million texels long, whose taps overflow an int.)
     auto tapsAlong = [](float length, float spacing) {
         return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(kMaxBoxTaps + 1))));
     };
-    int tapsX = 0, tapsY = 0;
-    for (;; ++level) {
+    maxPathTaps = std::max(maxPathTaps, 1);
+    BoxGrid grid;
+    auto at = [&](int level) {
         const float spacing = std::exp2(float(level));
-        tapsX = tapsAlong(lengthX, spacing), tapsY = tapsAlong(lengthY, spacing);
-        if (tapsX * tapsY <= kMaxBoxTaps || level == maxLevel) break;
-    }
-    tapsX = std::min(tapsX, kMaxBoxTaps), tapsY = std::min(tapsY, kMaxBoxTaps / tapsX);
-    const Level& l = (*m_levels)[std::size_t(level)];
+        grid.level = level;
+        grid.tapsX = tapsAlong(lengthX, spacing), grid.tapsY = tapsAlong(lengthY, spacing);
+        grid.tapsAlong = std::clamp(int(std::ceil(std::min(tapsPerTexel * pathTexels / spacing, float(maxPathTaps)))), 1, maxPathTaps);
+    };
+    // The box's own level: the finest (spacing 2^level texels) at which both axes take at most
+    // kMaxBoxTaps taps in all, each axis as many taps as it is spacings long, at least one.
+    for (at(0); grid.tapsX * grid.tapsY > kMaxBoxTaps && grid.level < maxLevel;) at(grid.level + 1);
+    grid.tapsX = std::min(grid.tapsX, kMaxBoxTaps), grid.tapsY = std::min(grid.tapsY, kMaxBoxTaps / grid.tapsX);
+    // Fewer times past kMaxSweptBoxTaps, but at least two a width of the box's narrower side.
+    const int covering = int(std::ceil(std::min(2.0f * pathTexels / std::max(std::min(lengthX, lengthY), 1e-6f), float(maxPathTaps))));
+    grid.tapsAlong = std::min(grid.tapsAlong, std::max({1, covering, kMaxSweptBoxTaps / (grid.tapsX * grid.tapsY)}));
+    return grid;
+}
+
+glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, float* inside) const {
+    const glm::vec2 size{float(width()), float(height())};
+    return sampleBox(uv, footprint, boxGrid(glm::length(footprint.duvdx * size), glm::length(footprint.duvdy * size)), inside);
+}
+
+glm::vec4 Texture::sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, const BoxGrid& grid, float* inside) const {
+    if (inside) *inside = 1.0f;
+    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
+    const glm::vec2 size{float(width()), float(height())};
+    if (!std::isfinite(glm::length(footprint.duvdx * size)) || !std::isfinite(glm::length(footprint.duvdy * size)))
+        return trilinearAt(uv, float(numLevels() - 1));
+    // minLod is not a box's floor: it widens a lookup for the spacing of the taps along a uv path,
+    // and in every direction, which blurs a box across the motion too (AnimatedCube against
+    // Cycles: 47.6 dB with it, 52.3 dB without).
+    const int tapsX = grid.tapsX, tapsY = grid.tapsY;
+    const Level& l = (*m_levels)[std::size_t(grid.level)];
     const UvTriangleTest isInside(footprint.clipTo);
     if (tapsX * tapsY == 1) {
         // One tap: the centre, held to the triangle when it falls outside (as the caller's uv

@@ -95,6 +95,25 @@ public:
     // With inside set, it receives the fraction of the taps within footprint.clipTo (1 without
     // one): how much of the box the triangle covers, for a caller that weights boxes by it.
     glm::vec4 sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, float* inside = nullptr) const;
+
+    // A box swept along a uv path (a shared shading's pixel box over its span of time) is the
+    // box at each of tapsAlong times along the path, on the box's own level (sampleBox's), the
+    // path's taps tapsPerTexel a spacing of that level. Where the box's taps times the path's
+    // would pass kMaxSweptBoxTaps, the path takes fewer, down to two a box width (the boxes at
+    // consecutive times then overlap by half, and together cover the swept region): a box as
+    // wide as many texels no longer takes 64 taps at each of 32 times. Fewer times than that
+    // alias: 256 taps in all lost 0.7 dB against Cycles on builtin:cubes; raising the level
+    // instead blurs across the motion (AnimatedCube at one shading a pixel: 2 dB). docs/BENCHMARKS.md.
+    static constexpr int kMaxSweptBoxTaps = 256;
+    struct BoxGrid {
+        int level = 0, tapsX = 1, tapsY = 1, tapsAlong = 1;
+    };
+    // The grid of a box lengthX x lengthY texels (level 0) swept along a path pathTexels long,
+    // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. Lengths that
+    // are not finite take the coarsest level's texel.
+    BoxGrid boxGrid(float lengthX, float lengthY, float pathTexels = 0.0f, float tapsPerTexel = 1.0f, int maxPathTaps = 1) const;
+    // One time's box on `grid` (sampleBox is this on its own box's grid).
+    glm::vec4 sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, const BoxGrid& grid, float* inside = nullptr) const;
     // The level of the anisotropic taps for a footprint (minLod 0): the finest detail a lookup
     // keeps, so what taps along a uv path must be spaced by not to alias.
     float finestLodOfFootprint(const glm::vec2& duvdx, const glm::vec2& duvdy) const;

@@ -122,11 +122,42 @@ vec2 heldUv(UvTriangle t, vec2 uv) {
     return vec2(t.origin + b.y * t.edge1 + b.z * t.edge2);
 }
 
-// Texture::sampleBox: the mean of bilinear taps over the parallelogram duvdx x duvdy around uv,
-// one per texel of the finest level where both axes take at most kMaxBoxTaps in all; with
-// isClipped only the taps inside the uv triangle `corners` count, and `inside` gets their share.
+// Texture::boxGrid: (level, tapsX, tapsY, tapsAlong) for a box lengthX x lengthY texels swept
+// along a path pathTexels long: the finest level where the box takes at most kMaxBoxTaps taps,
+// the path tapsPerTexel a spacing of it (at most maxPathTaps), fewer where box and path together
+// would pass kMaxSweptBoxTaps, down to two a width of the box's narrower side.
 const int kMaxBoxTaps = 64;
-vec4 sampleBox(int index, vec2 uv, vec2 duvdx, vec2 duvdy, bool isClipped, vec2 corners[3], out float inside) {
+const int kMaxSweptBoxTaps = 256;
+ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps) {
+    int maxLevel = textureLevelsOf(index) - 1;
+    ivec4 grid = ivec4(maxLevel, 1, 1, 1);
+    bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY) || isinf(pathTexels) || isnan(pathTexels));
+    if (isFinite) {
+        maxPathTaps = max(maxPathTaps, 1);
+        bool isFound = false;
+        for (int l = 0; l <= maxLevel; ++l) {
+            float spacing = exp2(float(l));
+            // (At most kMaxBoxTaps + 1 an axis, as Texture::boxGrid: no int overflows.)
+            int x = max(1, int(min(ceil(lengthX / spacing - 1e-3), float(kMaxBoxTaps + 1))));
+            int y = max(1, int(min(ceil(lengthY / spacing - 1e-3), float(kMaxBoxTaps + 1))));
+            int t = clamp(int(ceil(min(tapsPerTexel * pathTexels / spacing, float(maxPathTaps)))), 1, maxPathTaps);
+            if (!isFound) {
+                grid = ivec4(l, x, y, t);
+                isFound = x * y <= kMaxBoxTaps;
+            }
+        }
+        grid.y = min(grid.y, kMaxBoxTaps);
+        grid.z = min(grid.z, kMaxBoxTaps / grid.y);
+        int covering = int(ceil(min(2.0 * pathTexels / max(min(lengthX, lengthY), 1e-6), float(maxPathTaps))));
+        grid.w = min(grid.w, max(max(1, covering), kMaxSweptBoxTaps / (grid.y * grid.z)));
+    }
+    return grid;
+}
+
+// Texture::sampleBox on a grid: the mean of bilinear taps over the parallelogram duvdx x duvdy
+// around uv, grid.y x grid.z of them at level grid.x; with isClipped only the taps inside the uv
+// triangle `corners` count, and `inside` gets their share.
+vec4 sampleBox(int index, vec2 uv, vec2 duvdx, vec2 duvdy, ivec4 grid, bool isClipped, vec2 corners[3], out float inside) {
     // One exit, and no break or continue: llvmpipe loses later work of an invocation that left
     // such loops or returned early here.
     inside = 1.0;
@@ -138,23 +169,8 @@ vec4 sampleBox(int index, vec2 uv, vec2 duvdx, vec2 duvdy, bool isClipped, vec2 
     bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY));
     if (isUsable && !isFinite) result = sampleTexture(index, uv, float(maxLevel));
     if (isUsable && isFinite) {
-        int level = 0, tapsX = 1, tapsY = 1;
-        bool isFound = false;
-        for (int l = 0; l <= maxLevel; ++l) {
-            float spacing = exp2(float(l));
-            // (At most kMaxBoxTaps + 1 an axis, as Texture::sampleBox: no int overflows.)
-            int x = max(1, int(min(ceil(lengthX / spacing - 1e-3), float(kMaxBoxTaps + 1))));
-            int y = max(1, int(min(ceil(lengthY / spacing - 1e-3), float(kMaxBoxTaps + 1))));
-            if (!isFound) {
-                level = l;
-                tapsX = x;
-                tapsY = y;
-                isFound = x * y <= kMaxBoxTaps;
-            }
-        }
-        tapsX = min(tapsX, kMaxBoxTaps);
-        tapsY = min(tapsY, kMaxBoxTaps / tapsX);
-        float lod = float(level);
+        int tapsX = grid.y, tapsY = grid.z;
+        float lod = float(grid.x);
         UvTriangle clip = uvTriangle(isClipped, corners);
         if (tapsX * tapsY == 1) {
             // One tap: the centre, held to the triangle when it falls outside, all or nothing.

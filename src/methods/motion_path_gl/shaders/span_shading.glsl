@@ -231,6 +231,18 @@ vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
         while (pieces < kMaxSweptPieces && bend > 0.25 * spacing * float(pieces * pieces)) pieces *= 2;
         numTaps = pieces;
     }
+    // A box takes one grid for the whole span (Texture::boxGrid): the box's level and taps at the
+    // widest it is at the span's ends and middle, and the times along the path.
+    ivec4 grid = ivec4(0, 1, 1, 1);
+    if (isBox) {
+        float lengthX = 0.0, lengthY = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            lengthX = max(lengthX, length(ends[i].duvdx * size));
+            lengthY = max(lengthY, length(ends[i].duvdy * size));
+        }
+        grid = boxGrid(tex, lengthX, lengthY, pathTexels, u_tapsPerTexel, u_textureSamples);
+        numTaps = grid.w;
+    }
     vec2 from = ends[0].uv;
     bool hasFrom = true;
 
@@ -257,7 +269,7 @@ vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
             sweep = to - from;
             from = to;
             hasFrom = hasTo;
-        } else if (isClipped || 2 * i + 1 != numTaps) {
+        } else if (isBox || 2 * i + 1 != numTaps) {
             hasTap = uvAt(point, timeBetween(g_window, t0, t1, f), uv);
         }
         if (!hasTap) continue;
@@ -265,7 +277,7 @@ vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
         vec2 duvdy = quadraticThrough(vec3(ends[0].duvdy, 0.0), vec3(ends[1].duvdy, 0.0), vec3(ends[2].duvdy, 0.0), f).xy;
         float weight = 1.0;
         vec4 texel = swept   ? sampleSweptFootprint(tex, uv, duvdx, duvdy, sweep, 0.0, max(16, u_textureSamples), u_tapsPerTexel)
-                     : isBox ? sampleBox(tex, uv, duvdx, duvdy, isClipped, clip, weight)
+                     : isBox ? sampleBox(tex, uv, duvdx, duvdy, grid, isClipped, clip, weight)
                              : sampleFootprint(tex, uv, duvdx, duvdy, pathLod);
         weight = max(weight, kLeastCoverage);
         if (lit) {
