@@ -255,13 +255,15 @@ def main():
     parser.add_argument("--target-fg", default=None,
                         help="time to these foreground PSNRs (comma-separated dB, e.g. 40,45): streak climbs --aa-ladder, Cycles its spp ladder")
     parser.add_argument("--aa-ladder", default="1,2,3,4,6,8", help="streak --aa values tried with --target-fg")
+    parser.add_argument("--aa", default="8", help="streak's --aa in the table without --target-fg")
     args = parser.parse_args()
     if args.target_fg is not None:
         time_to_quality(args)
         return
     chosen, methods, ladder_spp = selection(args)
     size = f"{args.width}x{args.height}"
-    print(f"Machine: {benchlib.machine()}. streak {' '.join(STREAK_FLAGS)} at {size}, least of {args.repeats}; "
+    streak_flags = with_aa(STREAK_FLAGS, args.aa)
+    print(f"Machine: {benchlib.machine()}. streak {' '.join(streak_flags)} at {size}, least of {args.repeats}; "
           f"reference: Cycles {args.spp} spp; ladder: {args.ladder} spp (its own seeds) against that reference.\n")
     print("| model | method | PSNR | fg PSNR | time | Cycles to equal fg PSNR |\n|---|---|---:|---:|---:|---|")
     ladders = []
@@ -277,7 +279,7 @@ def main():
         for spec in methods:
             method, options, stem = method_spec(spec)
             image = os.path.join(out, f"{stem}.exr")
-            ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + STREAK_FLAGS + options)
+            ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + streak_flags + options)
             psnr, fg, pixels = compare(args.streak, image, reference)
             equal = cycles_equal(ladder, args.spp, renders[args.spp]["seconds"], fg)
             print(f"| {name} | {spec} | {db(psnr)} | {db(fg)} ({pixels} px) | {ms / 1000:.2f} s | {equal} |", flush=True)

@@ -209,4 +209,39 @@ TEST(PixelShading, TexturedTrianglesAreShadedPerCellUntexturedOncePerPixel) {
     }
 }
 
+// The cells a side are at most shading-cells (4) and --aa, and as few as hold the same samples a
+// side: at --aa 6, 3 x 3 cells of 2 x 2 samples each shade once, where 4 x 4 cells would hold
+// one or two samples a side (16 shadings, most of them boxes shared by two).
+TEST(PixelShading, EachCellHoldsAsManySamplesASideAsTheCellsAllow) {
+    const PixelShadingOptions options;
+    const int expected[] = {0, 1, 2, 3, 4, 3, 3, 4, 4, 3, 4, 4, 4, 4, 4, 4, 4};
+    for (int n = 1; n <= 16; ++n) {
+        const int cells = options.cellsFor(n);
+        EXPECT_EQ(cells, expected[n]) << "--aa " << n;
+        const raster::SamplePattern pattern = raster::SamplePattern::rooks(n);
+        PixelShading shading;
+        shading.begin(pattern, glm::dvec2(0.1), cells);
+        for (int s = 0; s < pattern.count(); ++s) {
+            const VisiblePiece piece{1, 0.0f, 1.0f, 1.0f, true};
+            shading.add(s, glm::dvec2(0.1) * glm::dvec2(pattern.offsets[std::size_t(s)]) / double(raster::kSubpixelScale),
+                        std::span<const VisiblePiece>(&piece, 1), kTextured);
+        }
+        Recorder recorder;
+        std::vector<glm::vec3> colors(std::size_t(pattern.count()), glm::vec3(0.0f));
+        PixelShadingCounters counters;
+        shading.finish(options, recorder, colors, counters);
+        // A textured piece every sample sees is shaded once a cell, each cell as wide as the
+        // samples it holds.
+        EXPECT_EQ(recorder.calls.size(), std::size_t(cells * cells)) << "--aa " << n;
+        const int perCell = (n + cells - 1) / cells;
+        for (const Call& call : recorder.calls) EXPECT_LE(call.site.footprintPixels.x, double(perCell) / n + 1e-9) << "--aa " << n;
+    }
+    // An explicit count is a most: 2 at --aa 8 is 2 cells of 4 x 4, 3 is 3 of up to 3 x 3.
+    PixelShadingOptions two, three;
+    two.cellsPerAxis = 2, three.cellsPerAxis = 3;
+    EXPECT_EQ(two.cellsFor(8), 2);
+    EXPECT_EQ(three.cellsFor(8), 3);
+    EXPECT_EQ(three.cellsFor(2), 2);
+}
+
 }  // namespace streak::exposure
