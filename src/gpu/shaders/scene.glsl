@@ -190,7 +190,9 @@ vec4 clipFromWorld(vec3 p, float t) {
 dvec2 sampleRaster(ivec2 s) {
     int n = u_flags.y;
     ivec2 pixel = s / n, sub = s - pixel * n;
-    int a = ((sub.y - sub.x) % n + n) % n;
+    // (GLSL leaves % of a negative operand undefined; llvmpipe takes it as unsigned, which is the
+    // true residue only where n is a power of two: at --aa 3 the pattern was another one.)
+    int a = (sub.y - sub.x + n) % n;
     dvec2 offset = u_flags.z != 0 ? floor((dvec2(sub) + 0.5) / double(n) * 256.0)
                                   : floor((dvec2(sub) * double(n) + double(a) + 0.5) / double(n * n) * 256.0);
     return dvec2(pixel) * 256.0 + offset;

@@ -7,13 +7,16 @@
 // spread, and each of its pieces adds that colour times its own weight to its sample. Untextured
 // triangles take one cell a pixel, textured ones u_shadingCells a side. A cluster of one piece,
 // where a cell holds one sample, shades as that sample alone would. Past MAX_PIXEL_PIECES a
-// pixel's further pieces are shaded each at its sample (counted).
+// pixel's further pieces are shaded each at its sample (counted), each as a cluster of its own
+// numbered after the pixel's clusters.
 //
 // One dispatch shades clusters [u_firstCluster, u_firstCluster + u_clusterCount) of each pixel,
-// the first also what overflows, and the host dispatches again while a pixel has more
-// (maxClusters): llvmpipe ends every loop of an invocation once all its loops together have
-// run 65,535 iterations (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS), and a box shading alone can
-// take a few thousand, so a pixel's clusters are shaded a few per dispatch.
+// and the host dispatches again while a pixel has more (maxClusters): llvmpipe ends every loop
+// of an invocation once all its loops together have run 65,535 iterations (gallivm's
+// LP_MAX_TGSI_LOOP_ITERATIONS), and a box shading alone can take a few thousand, so a pixel's
+// clusters are shaded a few per dispatch. (The pieces past MAX_PIXEL_PIECES were all shaded in
+// the first dispatch: on builtin:pan at --aa 6 that ended the loops of whole workgroups, whose
+// invocations run in the same SIMD lanes and share the count, and left 121 pixels unshaded.)
 layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int u_firstCluster;
@@ -98,8 +101,7 @@ void main() {
     bool isCellOneSample = u_shadingCells >= n;
 
     // Gather, in sample order; each sample's pieces come sorted by (triangle, start).
-    int numPending = 0;
-    bool isOverflowing = false;
+    int numPending = 0, numOverflowing = 0;
     for (int s = 0; s < spp; ++s) {
         ivec2 texel = pixel * n + ivec2(s % n, s / n);
         sampleTexel[s] = texel;
@@ -113,11 +115,7 @@ void main() {
         for (uint k = 0u; k < run.y; ++k) {
             PieceNode piece = pieceNodes[run.x + k];
             if (numPending == MAX_PIXEL_PIECES) {
-                isOverflowing = true;
-                if (u_firstCluster > 0) continue;
-                vec3 color = shadeTimeSpan(piece.triangle, piece.t0, piece.t1, sampleNdcs[s]).rgb * piece.weight;
-                colors[s] += color;
-                addShownColor(sampleIndex, piece.triangle, color);
+                ++numOverflowing;
                 continue;
             }
             pendingTriangle[numPending] = piece.triangle;
@@ -127,7 +125,7 @@ void main() {
             ++numPending;
         }
     }
-    if (isOverflowing && u_firstCluster == 0) atomicAdd(pieceOverflowPixels, 1u);
+    if (numOverflowing > 0 && u_firstCluster == 0) atomicAdd(pieceOverflowPixels, 1u);
     if (numPending == 0) return;
 
     // A stable sort by (triangle, cell, start), swapped down into place (see the resolve's gather).
@@ -179,8 +177,25 @@ void main() {
         if (c > 0 && pendingTriangle[order[clusterBegin[c]]] != lastTriangle) ++triangleCount;
         lastTriangle = pendingTriangle[order[clusterBegin[c]]];
     }
-    int lastCluster = min(numClusters, u_firstCluster + u_clusterCount);
-    for (int c = u_firstCluster; c < lastCluster; ++c) {
+    int lastCluster = min(numClusters + numOverflowing, u_firstCluster + u_clusterCount);
+    // The pieces past MAX_PIXEL_PIECES in this dispatch's range, each at its sample: the gather's
+    // walk again, counting them in its order.
+    if (lastCluster > numClusters) {
+        int walked = 0;
+        for (int s = 0; s < spp; ++s) {
+            uint sampleIndex = uint(sampleTexel[s].y) * uint(u_viewport.x) + uint(sampleTexel[s].x);
+            uvec2 run = samplePieces[sampleIndex];
+            for (uint k = 0u; k < run.y; ++k, ++walked) {
+                int c = numClusters + walked - MAX_PIXEL_PIECES;
+                if (walked < MAX_PIXEL_PIECES || c < u_firstCluster || c >= lastCluster) continue;
+                PieceNode piece = pieceNodes[run.x + k];
+                vec3 color = shadeTimeSpan(piece.triangle, piece.t0, piece.t1, sampleNdcs[s]).rgb * piece.weight;
+                colors[s] += color;
+                addShownColor(sampleIndex, piece.triangle, color);
+            }
+        }
+    }
+    for (int c = u_firstCluster; c < min(numClusters, lastCluster); ++c) {
         int begin = clusterBegin[c], end = c + 1 < numClusters ? clusterBegin[c + 1] : numPending;
         uint first = order[begin];
         uint tri = pendingTriangle[first];
@@ -209,7 +224,7 @@ void main() {
         }
     atomicAdd(clustersShaded, uint(max(0, lastCluster - u_firstCluster)));
     if (u_firstCluster > 0) return;
-    atomicMax(maxClusters, uint(numClusters));
+    atomicMax(maxClusters, uint(numClusters + numOverflowing));
     atomicAdd(pixelsShaded, 1u);
     atomicAdd(piecesGathered, uint(numPending));
     atomicAdd(visibleTriangles, uint(triangleCount));
