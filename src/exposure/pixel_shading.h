@@ -48,7 +48,8 @@ struct PixelShadingOptions {
     // hold the same samples a side. At --aa 6 that is 3 cells of 2 x 2 samples, not 4 whose
     // cells hold one or two a side: a cell of one sample shades alone, and one of two pays for a
     // box (Texture::sampleBox) shared by only two. Against Cycles at --aa 6 the 14 shared models
-    // score as with 4 but MorphStressTest (-1.2 dB), in 1.16-1.69x less time (docs/BENCHMARKS.md).
+    // score as with 4 within 0.2 dB but MorphStressTest (-1.2 dB), textured ones in 1.12-1.71x less
+    // time (docs/BENCHMARKS.md, "Cells of equal samples").
     int cellsFor(int samplesPerAxis) const {
         const int most = std::max(1, std::min(cellsPerAxis, samplesPerAxis));
         const int perCell = (samplesPerAxis + most - 1) / most;
