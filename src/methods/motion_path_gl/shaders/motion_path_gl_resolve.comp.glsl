@@ -127,20 +127,6 @@ void showSurface(uint tri, float share, vec3 depths, vec3 color) {
     shown[b] = ShownRecord(tri, share, depths.x, depths.y, depths.z, color.r, color.g, color.b);
 }
 
-// Adds a colour to the record that holds a triangle: its own, or its mesh's where they joined.
-void addShownColor(uint tri, vec3 color) {
-    if (u_writeSurfaces == 0) return;
-    int k = -1;
-    for (int r = 0; r < numShown && k < 0; ++r)
-        if (shown[r].triangle == tri) k = r;
-    for (int r = 0; r < numShown && k < 0; ++r)
-        if (meshOfTriangle(shown[r].triangle) == meshOfTriangle(tri)) k = r;
-    if (k < 0) return;
-    shown[k].r += color.r;
-    shown[k].g += color.g;
-    shown[k].b += color.b;
-}
-
 // An interval's depths over [t0, t1]: at the middle (linear), the nearer end and the farther.
 vec3 depthsOver(Interval interval, float t0, float t1) {
     float d0 = depthAt(interval, t0), d1 = depthAt(interval, t1);
@@ -373,7 +359,6 @@ void main() {
         }
         addPiece(i, tri, intervals[i].t0, intervals[i].t1, weights[i], isWhole);
     }
-    int shaded = 0;
 
     // The pieces by (triangle, t0), swapped down into place as in the gather.
     for (int i = 1; i < numPieces; ++i)
@@ -389,8 +374,9 @@ void main() {
             pieceDepths[j - 1] = db;
             pieceDepths[j] = da;
         }
-    // Abutting whole pieces of one triangle are one span: shaded here, or kept in place (the
-    // first `spans` pieces) for the pixel pass, which adds their colour to the passes' records.
+    // Abutting whole pieces of one triangle are one span, kept in place (the first `spans`
+    // pieces, with their mean depths): shaded below, or left to the pixel pass, which adds their
+    // colour to the passes' records.
     int spans = 0;
     for (int i = 0; i < numPieces;) {
         uint tri = pieceTriangles[i];
@@ -403,33 +389,34 @@ void main() {
             weight += pieces[j].z;
             depths = vec3(depths.x + pieceDepths[j].x * pieces[j].z, min(depths.y, pieceDepths[j].y), max(depths.z, pieceDepths[j].z));
         }
-        if (u_shadingPerPixel != 0) {
-            showSurface(tri, weight, vec3(depths.x / weight, depths.yz), vec3(0.0));
-            pieceTriangles[spans] = tri;
-            pieces[spans++] = vec4(t0, t1, weight, 1.0);
-        } else {
-            vec3 color = shadeTimeSpan(tri, t0, t1, ndc).rgb * weight;
-            sum += color;
-            showSurface(tri, weight, vec3(depths.x / weight, depths.yz), color);
-            ++shaded;
-        }
+        pieceTriangles[spans] = tri;
+        pieceDepths[spans] = vec3(depths.x / weight, depths.yz);
+        pieces[spans++] = vec4(t0, t1, weight, 1.0);
         i = j;
     }
-    if (spans > 0) {
+    bool isPooled = false;
+    if (u_shadingPerPixel != 0 && spans > 0) {
         uint first = atomicAdd(piecesWritten, uint(spans));
-        if (first + uint(spans) <= u_pieceCapacity) {
+        isPooled = first + uint(spans) <= u_pieceCapacity;
+        if (isPooled) {
             for (int k = 0; k < spans; ++k) pieceNodes[first + uint(k)] = PieceNode(pieceTriangles[k], pieces[k].x, pieces[k].y, pieces[k].z);
             samplePieces[uint(s.y) * uint(u_viewport.x) + uint(s.x)] = uvec2(first, uint(spans));
         } else {
             // The pool is full: this sample shades its own, as --option shading=sample does.
             atomicAdd(pieceOverflowSamples, 1u);
-            for (int k = 0; k < spans; ++k) {
-                vec3 color = shadeTimeSpan(pieceTriangles[k], pieces[k].x, pieces[k].y, ndc).rgb * pieces[k].z;
-                sum += color;
-                addShownColor(pieceTriangles[k], color);
-                ++shaded;
-            }
         }
+    }
+    // Shaded by this one call (the compiler inlines each call of shadeTimeSpan, and llvmpipe's
+    // build time grows with them).
+    int shaded = 0;
+    for (int k = 0; k < spans; ++k) {
+        vec3 color = vec3(0.0);
+        if (!isPooled) {
+            color = shadeTimeSpan(pieceTriangles[k], pieces[k].x, pieces[k].y, ndc).rgb * pieces[k].z;
+            sum += color;
+            ++shaded;
+        }
+        showSurface(pieceTriangles[k], pieces[k].z, pieceDepths[k], color);
     }
     atomicAdd(shadedSpans, uint(shaded));
     imageStore(u_output, s, vec4(sum, 1.0 - background));
