@@ -60,6 +60,9 @@ constexpr std::size_t kPieceBytes = 16, kSampleRunBytes = 8, kPiecesPerSample = 
 // The most pieces the pixel pass sorts and clusters in one pixel (its local arrays); past them a
 // piece is shaded at its sample (piece_overflow_pixels).
 int maxPixelPieces(int aa) { return std::clamp(8 * aa * aa, 64, 512); }
+// The --aa the pixel pass's arrays are sized for: one build serves --aa 1-4 and one 5-8 (each
+// build took llvmpipe seconds, and a change of --aa rebuilt it).
+int pixelPassAa(int aa) { return aa <= 4 ? 4 : aa <= 8 ? 8 : aa; }
 
 // What shows in a sample, for the passes (the resolve's ShownRecord, std430): kMaxShown a sample.
 struct ShownRecord {
@@ -160,8 +163,9 @@ public:
         const gpu::GlProgram* pixelShading = nullptr;
         if (perPixel) {
             std::map<std::string, std::string> pixelDefines = defines;
-            pixelDefines["MAX_PIXEL_PIECES"] = std::to_string(maxPixelPieces(grid.aa));
-            pixelDefines["MAX_PIXEL_SAMPLES"] = std::to_string(grid.aa * grid.aa);
+            pixelDefines.erase("MAX_INTERVALS");  // the resolve's
+            pixelDefines["MAX_PIXEL_PIECES"] = std::to_string(maxPixelPieces(pixelPassAa(grid.aa)));
+            pixelDefines["MAX_PIXEL_SAMPLES"] = std::to_string(pixelPassAa(grid.aa) * pixelPassAa(grid.aa));
             pixelShading = &gpu::buildProgram({{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "moving_triangle.glsl", "span_shading.glsl",
                                                                      "motion_path_gl_pixel_shading.comp.glsl"}}},
                                               pixelDefines);
@@ -171,6 +175,7 @@ public:
             glProgramUniform1f(id, glGetUniformLocation(id, "u_tapsPerTexel"), m_options.spanShading.tapsPerTexel);
             setInt(id, "u_sweptTexture", m_options.spanShading.textureFilter == exposure::SpanTextureFilter::Swept ? 1 : 0);
             setInt(id, "u_shadingCells", cells);
+            setInt(id, "u_maxPixelPieces", maxPixelPieces(grid.aa));
             setInt(id, "u_boxFilter", shading.boxFilter ? 1 : 0);
             setInt(id, "u_writeSurfaces", writesSurfaces ? 1 : 0);
         }

@@ -6,7 +6,7 @@
 // shaded once, over its hull, held to its triangle, with a box footprint as wide as its samples
 // spread, and each of its pieces adds that colour times its own weight to its sample. Untextured
 // triangles take one cell a pixel, textured ones u_shadingCells a side. A cluster of one piece,
-// where a cell holds one sample, shades as that sample alone would. Past MAX_PIXEL_PIECES a
+// where a cell holds one sample, shades as that sample alone would. Past u_maxPixelPieces a
 // pixel's further pieces are shaded each at its sample (counted), each as a cluster of its own
 // numbered after the pixel's clusters.
 //
@@ -14,7 +14,7 @@
 // and the host dispatches again while a pixel has more (maxClusters): llvmpipe ends every loop
 // of an invocation once all its loops together have run 65,535 iterations (gallivm's
 // LP_MAX_TGSI_LOOP_ITERATIONS), and a box shading alone can take a few thousand, so a pixel's
-// clusters are shaded a few per dispatch. (The pieces past MAX_PIXEL_PIECES were all shaded in
+// clusters are shaded a few per dispatch. (The pieces past u_maxPixelPieces were all shaded in
 // the first dispatch: on builtin:pan at --aa 6 that ended the loops of whole workgroups, whose
 // invocations run in the same SIMD lanes and share the count, and left 121 pixels unshaded.)
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -24,6 +24,9 @@ uniform int u_clusterCount;
 uniform int u_shadingCells;  // cells a side, at most --aa
 uniform int u_boxFilter;     // shading-filter=box: the box at the samples' bounds; lookup: at their centroid
 uniform int u_writeSurfaces;
+// The pieces a pixel sorts and clusters, at most MAX_PIXEL_PIECES (the arrays' size, the same for
+// a range of --aa, so that one build of this pass serves them).
+uniform int u_maxPixelPieces;
 
 struct PieceNode {
     uint triangle;
@@ -116,7 +119,7 @@ void main() {
         uvec2 run = samplePieces[sampleIndex];
         for (uint k = 0u; k < run.y; ++k) {
             PieceNode piece = pieceNodes[run.x + k];
-            if (numPending == MAX_PIXEL_PIECES) {
+            if (numPending == u_maxPixelPieces) {
                 ++numOverflowing;
                 continue;
             }
@@ -187,7 +190,7 @@ void main() {
     }
     int lastCluster = min(numClusters + numOverflowing, u_firstCluster + u_clusterCount);
     // This dispatch's clusters, the pixel's own [u_firstCluster, numClusters) after those past
-    // them (the pieces past MAX_PIXEL_PIECES), each shaded by the one call below: the compiler
+    // them (the pieces past u_maxPixelPieces), each shaded by the one call below: the compiler
     // inlines every call of shadeTimeSpanAt, and llvmpipe took 47 s to build this pass with three.
     int firstOwn = min(u_firstCluster, numClusters), lastOwn = min(numClusters, lastCluster);
     int firstPast = max(u_firstCluster, numClusters);
@@ -201,9 +204,9 @@ void main() {
         int begin = 0, end = 0, pastSample = 0;
         float pastWeight = 0.0;
         if (isPast) {
-            // The piece numbered (c - numClusters) past MAX_PIXEL_PIECES in the gather's walk,
+            // The piece numbered (c - numClusters) past u_maxPixelPieces in the gather's walk,
             // shaded at its sample.
-            int target = c - numClusters + MAX_PIXEL_PIECES, walked = 0;
+            int target = c - numClusters + u_maxPixelPieces, walked = 0;
             for (int s = 0; s < spp; ++s) {
                 uint sampleIndex = uint(sampleTexel[s].y) * uint(u_viewport.x) + uint(sampleTexel[s].x);
                 uvec2 run = samplePieces[sampleIndex];
