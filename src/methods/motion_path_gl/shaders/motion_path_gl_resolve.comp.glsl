@@ -250,62 +250,16 @@ float resolveTranslucent(int n) {
     return remaining / float(u_maskBits);
 }
 
-void main() {
-    ivec2 s = ivec2(gl_GlobalInvocationID.xy);
-    if (s.x >= u_viewport.x || s.y >= u_viewport.y) return;
-    dvec2 ndc = sampleNdc(s);
-    g_window = rowWindow(s.y / u_flags.y);  // masks and span taps in the row's exposure
-
-    // Gather, keeping the nearest MAX_INTERVALS, sorted by minimum depth.
-    int n = 0;
-    bool isOverflowing = false;
-    uint node = imageLoad(u_heads, s).x;
-    for (uint guard = 0u; node != kEndOfList && node < u_listCapacity && guard < u_sampleBudget; ++guard) {
-        PathNode f = nodes[node];
-        node = f.next;
-        Interval interval = Interval(f.t0, f.t1, f.depth0, f.depth1, f.segment, vec4(0.0, 0.0, 0.0, 1.0));
-        if (n == MAX_INTERVALS) {
-            isOverflowing = true;
-            if (minDepth(interval) >= minDepth(intervals[n - 1])) continue;
-            --n;
-        }
-        // Swapped down into place, both neighbours read before either is written: llvmpipe
-        // miscompiles the textbook shifting insertion (elements come out duplicated or zero).
-        intervals[n] = interval;
-        for (int i = n++; i > 0; --i) {
-            Interval a = intervals[i - 1], b = intervals[i];
-            if (!(minDepth(a) > minDepth(b))) break;
-            intervals[i - 1] = b;
-            intervals[i] = a;
-        }
-    }
-    if (isOverflowing) atomicAdd(intervalOverflowSamples, 1u);
-    if (n == 0) {
-        imageStore(u_output, s, vec4(u_background.rgb, 0.0));  // alpha: coverage
-        return;
-    }
-    atomicAdd(intervalCount, uint(n));
-    atomicMax(maxIntervalCount, uint(n));
-
-    bool isTranslucent = false;
-    for (int i = 0; i < n; ++i) {
-        uint tri = intervals[i].segment / uint(u_numSegments);
-        if (isTranslucentMaterial(triangles[tri].w & kMaterialMask)) {
-            intervals[i].color = shadeTimeSpan(tri, intervals[i].t0, intervals[i].t1, ndc);
-            isTranslucent = isTranslucent || intervals[i].color.a < 1.0;
-        }
-    }
-
+// With u_sortIntervals, splits every crossing pair of the sample's n intervals and orders them
+// in depth-time order.
+void orderIntervals(inout int n) {
     if (u_sortIntervals != 0 && n > 1) {
         // Split every crossing pair (the list grows by two per split, up to the budget).
         for (int i = 0; i < n; ++i)
             for (int j = i + 1; j < n; ++j) {
                 Interval a = intervals[i], b = intervals[j], aTail, bTail;
                 if (!splitAtCrossing(a, b, aTail, bTail)) continue;
-                if (n + 2 > MAX_INTERVALS) {
-                    isOverflowing = true;
-                    continue;
-                }
+                if (n + 2 > MAX_INTERVALS) continue;  // past the budget the pair stays unsplit
                 intervals[i] = a;
                 intervals[j] = b;
                 intervals[n++] = aTail;
@@ -330,11 +284,16 @@ void main() {
             }
         }
     }
+}
 
+// Resolves the sample's n ordered intervals (the translucent ones shaded): the background's
+// share, the background and the translucent intervals' colour in sum, and the visible opaque
+// spans left in pieces[0, spans), which it returns.
+int visibleSpans(int n, bool isTranslucent, out float background, out vec3 sum) {
     // Opaque lists measured exactly give their visible pieces from the resolve.
     bool isExact = !isTranslucent && u_exactWeights != 0;
-    float background = isExact ? resolveOpaqueExact(n) : isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
-    vec3 sum = u_background.rgb * background;
+    background = isExact ? resolveOpaqueExact(n) : isTranslucent ? resolveTranslucent(n) : resolveOpaque(n);
+    sum = u_background.rgb * background;
     // Translucent materials' intervals were shaded when gathered; the other intervals are pieces,
     // whole where visible all through their span: with exact weights when their weight is the
     // span's exposure, with masks when it holds every slice of it.
@@ -375,8 +334,7 @@ void main() {
             pieceDepths[j] = da;
         }
     // Abutting whole pieces of one triangle are one span, kept in place (the first `spans`
-    // pieces, with their mean depths): shaded below, or left to the pixel pass, which adds their
-    // colour to the passes' records.
+    // pieces, with their mean depths).
     int spans = 0;
     for (int i = 0; i < numPieces;) {
         uint tri = pieceTriangles[i];
@@ -394,6 +352,12 @@ void main() {
         pieces[spans++] = vec4(t0, t1, weight, 1.0);
         i = j;
     }
+    return spans;
+}
+
+// At shading=pixel, hands the sample's spans to the pixel pass through the piece pool; false
+// where it does not (the pool full, or shading=sample): the sample shades its own.
+bool poolSpans(ivec2 s, int spans) {
     bool isPooled = false;
     if (u_shadingPerPixel != 0 && spans > 0) {
         uint first = atomicAdd(piecesWritten, uint(spans));
@@ -406,17 +370,77 @@ void main() {
             atomicAdd(pieceOverflowSamples, 1u);
         }
     }
-    // Shaded by this one call (the compiler inlines each call of shadeTimeSpan, and llvmpipe's
-    // build time grows with them).
-    int shaded = 0;
-    for (int k = 0; k < spans; ++k) {
-        vec3 color = vec3(0.0);
-        if (!isPooled) {
-            color = shadeTimeSpan(pieceTriangles[k], pieces[k].x, pieces[k].y, ndc).rgb * pieces[k].z;
-            sum += color;
-            ++shaded;
+    return isPooled;
+}
+
+void main() {
+    ivec2 s = ivec2(gl_GlobalInvocationID.xy);
+    if (s.x >= u_viewport.x || s.y >= u_viewport.y) return;
+    dvec2 ndc = sampleNdc(s);
+    g_window = rowWindow(s.y / u_flags.y);  // masks and span taps in the row's exposure
+
+    // Gather, keeping the nearest MAX_INTERVALS, sorted by minimum depth.
+    int n = 0;
+    bool isOverflowing = false;
+    uint node = imageLoad(u_heads, s).x;
+    for (uint guard = 0u; node != kEndOfList && node < u_listCapacity && guard < u_sampleBudget; ++guard) {
+        PathNode f = nodes[node];
+        node = f.next;
+        Interval interval = Interval(f.t0, f.t1, f.depth0, f.depth1, f.segment, vec4(0.0, 0.0, 0.0, 1.0));
+        if (n == MAX_INTERVALS) {
+            isOverflowing = true;
+            if (minDepth(interval) >= minDepth(intervals[n - 1])) continue;
+            --n;
         }
-        showSurface(pieceTriangles[k], pieces[k].z, pieceDepths[k], color);
+        // Swapped down into place, both neighbours read before either is written: llvmpipe
+        // miscompiles the textbook shifting insertion (elements come out duplicated or zero).
+        intervals[n] = interval;
+        for (int i = n++; i > 0; --i) {
+            Interval a = intervals[i - 1], b = intervals[i];
+            if (!(minDepth(a) > minDepth(b))) break;
+            intervals[i - 1] = b;
+            intervals[i] = a;
+        }
+    }
+    if (isOverflowing) atomicAdd(intervalOverflowSamples, 1u);
+    if (n == 0) {
+        imageStore(u_output, s, vec4(u_background.rgb, 0.0));  // alpha: coverage
+        return;
+    }
+    atomicAdd(intervalCount, uint(n));
+    atomicMax(maxIntervalCount, uint(n));
+
+    // Shading in two rounds from one call of shadeTimeSpan (Mesa inlines every call, and a second
+    // one doubled this pass's build on llvmpipe, 11 -> 21 s): the translucent intervals, whose
+    // alpha the resolve needs, then the visible opaque spans it leaves, unless the pixel pass
+    // shades them (which adds their colour to the passes' records).
+    bool isTranslucent = false, isPooled = false;
+    float background = 0.0;
+    vec3 sum = vec3(0.0);
+    int spans = 0, shaded = 0;
+    for (int round = 0; round < 2; ++round) {
+        for (int k = 0; k < (round == 0 ? n : spans); ++k) {
+            uint tri = round == 0 ? intervals[k].segment / uint(u_numSegments) : pieceTriangles[k];
+            bool isShaded = round == 0 ? isTranslucentMaterial(triangles[tri].w & kMaterialMask) : !isPooled;
+            vec2 span = round == 0 ? vec2(intervals[k].t0, intervals[k].t1) : pieces[k].xy;
+            vec4 color = vec4(0.0);
+            if (isShaded) color = shadeTimeSpan(tri, span.x, span.y, ndc);
+            if (round == 0 && isShaded) {
+                intervals[k].color = color;
+                isTranslucent = isTranslucent || color.a < 1.0;
+            }
+            if (round == 1) {
+                vec3 added = color.rgb * pieces[k].z;
+                sum += added;
+                shaded += isShaded ? 1 : 0;
+                showSurface(tri, pieces[k].z, pieceDepths[k], added);
+            }
+        }
+        if (round == 0) {
+            orderIntervals(n);
+            spans = visibleSpans(n, isTranslucent, background, sum);
+            isPooled = poolSpans(s, spans);
+        }
     }
     atomicAdd(shadedSpans, uint(shaded));
     imageStore(u_output, s, vec4(sum, 1.0 - background));
