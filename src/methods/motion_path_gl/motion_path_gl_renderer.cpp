@@ -164,8 +164,9 @@ public:
         if (perPixel) {
             std::map<std::string, std::string> pixelDefines = defines;
             pixelDefines.erase("MAX_INTERVALS");  // the resolve's
-            pixelDefines["MAX_PIXEL_PIECES"] = std::to_string(maxPixelPieces(pixelPassAa(grid.aa)));
-            pixelDefines["MAX_PIXEL_SAMPLES"] = std::to_string(pixelPassAa(grid.aa) * pixelPassAa(grid.aa));
+            const int arrayAa = pixelPassAa(grid.aa);
+            pixelDefines["MAX_PIXEL_PIECES"] = std::to_string(maxPixelPieces(arrayAa));
+            pixelDefines["MAX_PIXEL_SAMPLES"] = std::to_string(arrayAa * arrayAa);
             pixelShading = &gpu::buildProgram({{GL_COMPUTE_SHADER, {"scene.glsl", "shading.glsl", "moving_triangle.glsl", "span_shading.glsl",
                                                                      "motion_path_gl_pixel_shading.comp.glsl"}}},
                                               pixelDefines);

@@ -420,16 +420,27 @@ void main() {
     int spans = 0, shaded = 0;
     for (int round = 0; round < 2; ++round) {
         for (int k = 0; k < (round == 0 ? n : spans); ++k) {
-            uint tri = round == 0 ? intervals[k].segment / uint(u_numSegments) : pieceTriangles[k];
-            bool isShaded = round == 0 ? isTranslucentMaterial(triangles[tri].w & kMaterialMask) : !isPooled;
-            vec2 span = round == 0 ? vec2(intervals[k].t0, intervals[k].t1) : pieces[k].xy;
+            // (Each round reads only its own arrays: spans may pass MAX_INTERVALS.)
+            uint tri;
+            vec2 span;
+            bool isShaded;
+            if (round == 0) {
+                tri = intervals[k].segment / uint(u_numSegments);
+                span = vec2(intervals[k].t0, intervals[k].t1);
+                isShaded = isTranslucentMaterial(triangles[tri].w & kMaterialMask);
+            } else {
+                tri = pieceTriangles[k];
+                span = pieces[k].xy;
+                isShaded = !isPooled;
+            }
             vec4 color = vec4(0.0);
             if (isShaded) color = shadeTimeSpan(tri, span.x, span.y, ndc);
-            if (round == 0 && isShaded) {
-                intervals[k].color = color;
-                isTranslucent = isTranslucent || color.a < 1.0;
-            }
-            if (round == 1) {
+            if (round == 0) {
+                if (isShaded) {
+                    intervals[k].color = color;
+                    isTranslucent = isTranslucent || color.a < 1.0;
+                }
+            } else {
                 vec3 added = color.rgb * pieces[k].z;
                 sum += added;
                 shaded += isShaded ? 1 : 0;
