@@ -20,6 +20,10 @@ bool lineStretchAt(const raster::MovingTriangle& still, int orientation, const g
     return found;
 }
 
+raster::SamplePattern linePatternFor(const raster::SamplePattern& points, int rows) {
+    return rows > 0 && rows != points.count() ? raster::SamplePattern::rows(rows) : points;
+}
+
 ShadingSite lineSite(ShadingSite site, float t0, float t1, int width) {
     const double step = 2.0 / double(width);
     const double left = -1.0 + step * std::floor((site.ndc.x + 1.0) / step);

@@ -29,6 +29,15 @@ namespace streak::exposure {
 bool lineSamplingAllowed(const Scene& scene, const SegmentedGeometry& segmented);
 bool isLineTile(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, double zNear);
 
+// The most lines a pixel of a line tile takes (`--option line-rows`): the fixed-point grid's rows.
+inline constexpr int kMaxLineRows = int(raster::kSubpixelScale);
+
+// A line tile's samples: `rows` lines down each pixel (SamplePattern::rows), or with rows = 0
+// the point pattern `points` itself, whose rows at --aa n are rooks(n)'s n^2. A line resolves x
+// exactly and y only at its rows, so fewer rows than n^2 trade the edges near horizontal for
+// time (ToyCar at --aa 2 against Cycles: 2 rows 39.8 dB, 3 rows 45.7, 4 rows 47.8).
+raster::SamplePattern linePatternFor(const raster::SamplePattern& points, int rows);
+
 // The stretch [u0, u1] of a pixel's line that a triangle covers (shares of the pixel's width),
 // and its view depths at both ends.
 struct LineStretch {

@@ -2,6 +2,7 @@
 
 #include "raster/edge_equation.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -31,6 +32,15 @@ SamplePattern SamplePattern::rooks(int n) {
 
 SamplePattern SamplePattern::grid(int n) {
     return build(n, [&](double i, double j) { return glm::dvec2((i + 0.5) / n, (j + 0.5) / n); });
+}
+
+SamplePattern SamplePattern::rows(int r) {
+    assert(r >= 1);
+    SamplePattern pattern;
+    pattern.m_samplesPerAxis = std::max(1, int(std::lround(std::sqrt(double(r)))));
+    for (int k = 0; k < r; ++k)
+        pattern.offsets.emplace_back(kSubpixelScale / 2, std::int64_t(std::floor((double(k) + 0.5) / double(r) * kSubpixelScale)));
+    return pattern;
 }
 
 SamplePattern samplePatternFor(int n, bool isGrid) { return isGrid ? SamplePattern::grid(n) : SamplePattern::rooks(n); }

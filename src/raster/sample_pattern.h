@@ -29,6 +29,10 @@ struct SamplePattern {
 
     static SamplePattern rooks(int n);
     static SamplePattern grid(int n);
+    // r samples down the pixel's middle column, sample k at y = (k + 1/2) / r: the rows of line
+    // samples (exposure/line_samples.h), whose x is the whole pixel. rows(n * n) has the rows of
+    // rooks(n), in order from the top; its footprint is rooks(n)'s, a pixel over round(sqrt(r)).
+    static SamplePattern rows(int r);
     int count() const { return int(offsets.size()); }
     int samplesPerAxis() const { return m_samplesPerAxis; }
     // The spacing of the samples along each axis in fixed-point units (a pixel over n): the

@@ -2,12 +2,14 @@
 // against closed forms: where nothing in a tile moves, each sample is the line through it across
 // its pixel.
 
+#include "exposure/line_samples.h"
 #include "image/cryptomatte.h"
 #include "image/metrics.h"
 #include "methods/registry.h"
 #include "raster/sample_pattern.h"
 #include "support/render.h"
 #include "support/test_scenes.h"
+#include "streak/error.h"
 
 #include <gtest/gtest.h>
 
@@ -87,10 +89,12 @@ TEST(LineSamplesMethods, EachRowIsTheExactLengthOfItsLineThatEachSurfaceShows) {
     addRasterTriangles(scene, cam, front, test::addMaterial(scene, {1, 0, 0}), "front");
     addRasterTriangles(scene, cam, back, test::addMaterial(scene, {0, 1, 0}), "back");
     validateScene(scene);
+    // --aa 1-3 at their own rows (n^2), and line-rows choosing fewer or more (rows 0: the pattern's).
+    const std::pair<int, int> cases[] = {{1, 0}, {2, 0}, {3, 0}, {2, 3}, {3, 2}, {1, 5}};
     for (const char* method : kLineMethods)
-    for (const int aa : {1, 2, 3}) {
-        SCOPED_TRACE(std::string(method) + " --aa " + std::to_string(aa));
-        const raster::SamplePattern pattern = raster::samplePatternFor(aa, false);
+    for (const auto& [aa, rows] : cases) {
+        SCOPED_TRACE(std::string(method) + " --aa " + std::to_string(aa) + " line-rows " + std::to_string(rows));
+        const raster::SamplePattern pattern = rows > 0 ? raster::SamplePattern::rows(rows) : raster::samplePatternFor(aa, false);
         RenderStats stats;
         // With the Cryptomatte object pass: each mesh's coverage of a pixel is what it shows.
         RenderSettings settings;
@@ -98,7 +102,9 @@ TEST(LineSamplesMethods, EachRowIsTheExactLengthOfItsLineThatEachSurfaceShows) {
         settings.passes.objectId = true;
         settings.passes.cryptoRanks = 4;
         RenderContext context{stats};
-        const Image lines = createRenderer(method, withOption("line-samples", "1"))->render(scene, settings, context);
+        OptionMap options = withOption("line-samples", "1");
+        options.set("line-rows", std::to_string(rows));
+        const Image lines = createRenderer(method, options)->render(scene, settings, context);
         auto coverageOf = [&](const std::string& name, std::size_t i) {
             float sum = 0.0f;
             for (int r = 0; r < settings.passes.cryptoRanks; ++r) {
@@ -151,6 +157,16 @@ TEST(LineSamplesMethods, EachRowIsTheExactLengthOfItsLineThatEachSurfaceShows) {
         // Points at the same rows are not lines: the closed form tells them apart.
         EXPECT_LT(lineError, 2e-5);
         EXPECT_GT(pointError, 0.1);
+    }
+}
+
+TEST(LineSamplesMethods, LineRowsWithoutLineSamplesIsRefused) {
+    // Rows of lines that are never drawn would change nothing: say so rather than ignore it.
+    for (const char* method : kLineMethods) {
+        EXPECT_THROW(createRenderer(method, withOption("line-rows", "3")), Error) << method;
+        OptionMap options = withOption("line-samples", "1");
+        options.set("line-rows", std::to_string(exposure::kMaxLineRows + 1));
+        EXPECT_THROW(createRenderer(method, options), Error) << method;
     }
 }
 

@@ -74,6 +74,26 @@ TEST(SamplePattern, RooksHasOneSamplePerStratumColumnAndRow) {
     }
 }
 
+TEST(SamplePattern, RowsAreEvenlySpacedAndRowsOfNSquaredAreRooksRows) {
+    // rows(r): row k at (k + 1/2) / r down the pixel's middle. rows(n^2) has rooks(n)'s rows to
+    // the fixed-point unit, so a line tile at --aa n with n^2 rows sees what its points' rows do.
+    for (int r : {1, 2, 3, 5, 7, 16, 256}) {
+        const SamplePattern pattern = SamplePattern::rows(r);
+        ASSERT_EQ(pattern.count(), r);
+        for (int k = 0; k < r; ++k) {
+            EXPECT_EQ(pattern.offsets[std::size_t(k)].x, kSubpixelScale / 2);
+            EXPECT_NEAR(pixelFraction(pattern.offsets[std::size_t(k)]).y, (k + 0.5) / r, 1.0 / kSubpixelScale) << "r = " << r << ", row " << k;
+        }
+    }
+    for (int n : {1, 2, 3, 4, 8}) {
+        std::multiset<std::int64_t> rooksRows, rows;
+        for (const glm::i64vec2& offset : SamplePattern::rooks(n).offsets) rooksRows.insert(offset.y);
+        for (const glm::i64vec2& offset : SamplePattern::rows(n * n).offsets) rows.insert(offset.y);
+        EXPECT_EQ(rooksRows, rows) << "n = " << n;
+        EXPECT_EQ(SamplePattern::rows(n * n).samplesPerAxis(), n);
+    }
+}
+
 TEST(SamplePattern, RooksResolvesEdgesAtAnyAngleAboutAsWellAsTheGrid) {
     // The sheared grid x = (i n + j + 1/2) / n^2, y = (j n + i + 1/2) / n^2 is n-rooks too, but
     // its points pair up nearly on top of each other: 1.7x the grid's error at n = 8, 2.3x at

@@ -45,6 +45,7 @@ struct Options {
     bool earlyCull = true; ///< skip the samples where nearer opaque triangles hide a segment all the shutter (renderRect)
     bool checkDepthOrder = false;
     bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
+    int lineRows = 0;          ///< line-rows: a line tile's lines per pixel; 0, the pattern's N^2 rows
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     bool closedCull = true;  ///< drop the back faces closed surfaces hide (exposure/closed_surfaces.h)
@@ -90,6 +91,7 @@ public:
         // their shadings over the whole pixel, each a box over the stretches and rows it serves.
         frame.lineResolve = options.resolve;
         frame.lineResolve.shading.cellsPerAxis = 1;
+        frame.linePattern = exposure::linePatternFor(frame.pattern, m_options.lineRows);
         context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
@@ -163,6 +165,7 @@ private:
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
         bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
         exposure::ExactResolveOptions lineResolve;  ///< the resolve's options in a line tile: one shading cell
+        raster::SamplePattern linePattern;          ///< a line tile's rows (line-rows; else the pattern)
 
         // A segment's surface and nearest depth, for the first pass's unseen segments.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {
@@ -211,9 +214,13 @@ private:
                     std::size_t maxRecords, TileScratch& scratch, Image& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1;
-        const int spp = frame.pattern.count();
         const Scene& scene = frame.scene;
         const auto segments = frame.segmented->segments();
+        // Line samples (exposure/line_samples.h) where every segment of the tile is still; not in
+        // adaptive sampling's first pass, one point per pixel. A line tile takes its own rows.
+        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, segments, scene.camera.zNear);
+        const raster::SamplePattern& pattern = scratch.isLineTile ? frame.linePattern : frame.pattern;
+        const int spp = pattern.count();
         const auto& triangles = frame.segmented->flat().triangles();
         const int width = frame.viewport.width, height = frame.viewport.height;
         Counters& counters = scratch.counters;
@@ -221,7 +228,7 @@ private:
         // Intervals: every sample in each segment's box solves the segment's edge equations.
         const auto start = Clock::now();
         scratch.records.clear();
-        exposure::tileSampleNdc(rect, frame.pattern, width, height, scratch.sampleNdc);
+        exposure::tileSampleNdc(rect, pattern, width, height, scratch.sampleNdc);
         const std::size_t numSamples = scratch.sampleNdc.size();
         // The early cull (exposure::EarlyCull): a sample that opaque triangles cover all the
         // shutter (one, or a mesh's several in turn) from nearer than a later segment's nearest
@@ -235,9 +242,6 @@ private:
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
                                     !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->hasWholeShutterSegments();
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
-        // Line samples (exposure/line_samples.h) where every segment of the tile is still; not in
-        // adaptive sampling's first pass, one point per pixel.
-        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, segments, scene.camera.zNear);
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, segments);
         scratch.sortRunsBySource = isCullingEarly;
         const glm::dvec2 tileLo = raster::ndcFromRaster(rect.x0, rect.y1 + 1, width, height);
@@ -268,7 +272,7 @@ private:
             if (scratch.isLineTile) {
                 // The stretches of its rows' lines it covers, as records (exposure/line_samples.h).
                 const bool isSeen = exposure::forEachTileLineStretch(
-                    moving, segment, tri.isDoubleSided, rect, region, frame.pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr,
+                    moving, segment, tri.isDoubleSided, rect, region, pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr,
                     nearest, isOccluder, counters.samplesHidden, counters.samplesCulled, [&](std::uint32_t sample, const exposure::LineStretch& stretch) {
                         exposure::TileRecord r;
                         r.sample = sample;
@@ -402,7 +406,7 @@ private:
         };
         const auto triangleOfSource = [&](std::uint32_t source) { return segments[source].triangle; };
         exposure::resolveExactTile(
-            rect, frame.pattern, scene, triangles, width, height, scratch.isLineTile ? frame.lineResolve : frame.options.resolve, start, scratch, image,
+            rect, pattern, scene, triangles, width, height, scratch.isLineTile ? frame.lineResolve : frame.options.resolve, start, scratch, image,
             triangleOfSource,
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 if (!scratch.isLineTile) return frame.shade(triangle, t0, t1, site, row, scratch.cache);
@@ -441,6 +445,8 @@ std::unique_ptr<Renderer> createAnalyticRenderer(OptionMap& options) {
     o.closedCull = options.getInt("closed-cull", 1, 0, 1) != 0;
     o.checkDepthOrder = options.getInt("check-depth-order", 0, 0, 1) != 0;
     o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
+    o.lineRows = options.getInt("line-rows", 0, 0, exposure::kMaxLineRows);
+    if (o.lineRows > 0 && !o.lineSamples) throw Error("method 'analytic': line-rows sets the rows of line samples, and needs line-samples=1");
     o.spanShading = exposure::spanShadingSettings(options, "analytic");
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.resolve.shading = exposure::pixelShadingOptions(options, "analytic");

@@ -54,6 +54,7 @@ struct Options {
     bool sortIntervals = true;
     bool earlyCull = true;  ///< skip the samples where nearer opaque triangles hide a path all the shutter (renderRect)
     bool lineSamples = false;  ///< line-samples=1: still tiles take each sample as a line across its pixel (exposure/line_samples.h)
+    int lineRows = 0;          ///< line-rows: a line tile's lines per pixel; 0, the pattern's N^2 rows
     int curveSegments = exposure::SegmentedGeometry::kAutoCurveSegments;
     bool closedCull = true;  ///< drop the back faces closed surfaces hide (exposure/closed_surfaces.h)
     exposure::SpanShadingSettings spanShading;  ///< texture-samples, taps-per-texel, texture-filter
@@ -136,6 +137,7 @@ public:
             frame.generate();
         }
         frame.canLineSample = options.lineSamples && exposure::lineSamplingAllowed(scene, frame.segmented);
+        frame.linePattern = exposure::linePatternFor(frame.pattern, options.lineRows);
         context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
@@ -277,6 +279,7 @@ private:
         raster::SamplePattern pattern;
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
         bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
+        raster::SamplePattern linePattern;  ///< a line tile's rows (line-rows; else the pattern)
 
         // A path's surface and nearest depth, for the first pass's unseen paths.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t path) const {
@@ -394,17 +397,17 @@ private:
     }
 
     // NDC of sample i of a tile (pixel-major, pattern position minor).
-    static glm::dvec2 sampleNdc(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
-        const int spp = frame.pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
+    static glm::dvec2 sampleNdc(const Frame& frame, const raster::SamplePattern& pattern, const raster::PixelBounds& rect, std::size_t i) {
+        const int spp = pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
         const int pixel = int(i / spp);
-        return frame.pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
+        return pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
                                    frame.viewport.height);
     }
 
     // The shutter window of sample i's row.
-    static ShutterWindow sampleWindow(const Frame& frame, const raster::PixelBounds& rect, std::size_t i) {
+    static ShutterWindow sampleWindow(const Frame& frame, const raster::SamplePattern& pattern, const raster::PixelBounds& rect, std::size_t i) {
         const int tileWidth = rect.x1 - rect.x0 + 1;
-        return frame.scene.shutter.rowWindow(rect.y0 + int(i / std::size_t(frame.pattern.count())) / tileWidth, frame.viewport.height);
+        return frame.scene.shutter.rowWindow(rect.y0 + int(i / std::size_t(pattern.count())) / tileWidth, frame.viewport.height);
     }
 
     // Keeps each sample's paths once, in path order (a path's faces overlap, so a sample can
@@ -447,7 +450,7 @@ private:
     // exact spans there are [0, 1] and seen, and the build will make that interval.
     static void coverByStillPath(const Frame& frame, const exposure::TriangleSegment& path, const raster::MovingTriangle& moving,
                                  const FlatTriangle& tri, const raster::PixelBounds& rect, std::uint32_t sample, TileScratch& scratch) {
-        const glm::dvec2 ndc = sampleNdc(frame, rect, sample);
+        const glm::dvec2 ndc = sampleNdc(frame, frame.pattern, rect, sample);  // (not a line tile)
         scratch.events.clear();
         frame.exactSpans(path, moving, ndc, scratch.events);
         Interval interval;
@@ -462,7 +465,11 @@ private:
                     std::size_t shareFragments, TileScratch& scratch, Image& image) const {
         using Clock = std::chrono::steady_clock;
         const int tileWidth = rect.x1 - rect.x0 + 1, tileHeight = rect.y1 - rect.y0 + 1;
-        const int spp = frame.pattern.count();
+        // Line samples (exposure/line_samples.h) where every path of the tile is still; not in
+        // adaptive sampling's first pass, one point per pixel. A line tile takes its own rows.
+        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, frame.paths, frame.scene.camera.zNear);
+        const raster::SamplePattern& pattern = scratch.isLineTile ? frame.linePattern : frame.pattern;
+        const int spp = pattern.count();
         const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
         const Options& options = frame.options;
         Counters& counters = scratch.counters;
@@ -481,9 +488,6 @@ private:
         const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
                                     frame.segmented.hasWholeShutterSegments();
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
-        // Line samples (exposure/line_samples.h) where every path of the tile is still; not in
-        // adaptive sampling's first pass, one point per pixel.
-        scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, frame.paths, frame.scene.camera.zNear);
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, frame.paths);
         for (std::size_t k = 0; k < items.size(); ++k) {
             if (!keepFragmentsWithinShare(scratch, shareFragments, isPixel, numSamples, k, items.size())) {
@@ -513,7 +517,7 @@ private:
                 // exposure/line_samples.h); seen from behind and single-sided, none.
                 std::int64_t missed = 0;
                 exposure::forEachTileLineStretch(scratch.movingTriangles.get(frame.segmented, index), segment, tri.isDoubleSided, rect, scan,
-                                                 frame.pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr, nearest,
+                                                 pattern, frame.viewport, isCullingEarly ? &earlyCull : nullptr, nearest,
                                                  isCullingEarly && !frame.scene.materials[tri.material].isTranslucent(), counters.samplesHidden,
                                                  missed, [&](std::uint32_t sample, const exposure::LineStretch&) {
                     scratch.fragments.push_back({sample, index, segment.nearness});
@@ -544,7 +548,7 @@ private:
                 for (int k = 0; k < scratch.setup.count; ++k) {
                     raster::ScreenTriangle& face = scratch.setup.triangles[k].screen;
                     raster::makeConservative(face, frame.viewport);
-                    raster::scanTriangle(face, scan, frame.pattern, [&](int px, int py, int s, const raster::EdgeValues&) { addFragment(px, py, s); });
+                    raster::scanTriangle(face, scan, pattern, [&](int px, int py, int s, const raster::EdgeValues&) { addFragment(px, py, s); });
                 }
                 // A face thinner than the grid is not set up: its own cover then (a sub-pixel sliver
                 // on a dense sphere's silhouette showed the back face through the hole).
@@ -554,7 +558,7 @@ private:
                     for (int py = std::max(b.y0, scan.y0); py <= std::min(b.y1, scan.y1); ++py)
                         for (int px = std::max(b.x0, scan.x0); px <= std::min(b.x1, scan.x1); ++px)
                             for (int s = 0; s < spp; ++s)
-                                if (scratch.snappedAway.covers(frame.pattern.rasterOf(px, py, s))) addFragment(px, py, s), isSeen = true;
+                                if (scratch.snappedAway.covers(pattern.rasterOf(px, py, s))) addFragment(px, py, s), isSeen = true;
                     counters.snappedAwayFaces += isSeen;
                 }
             }
@@ -596,7 +600,7 @@ private:
                     std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
                 }
                 const std::size_t first = scratch.built.size();
-                buildIntervals(frame, fragments, sampleNdc(frame, rect, i), sampleWindow(frame, rect, i), scratch, scratch.built);
+                buildIntervals(frame, fragments, sampleNdc(frame, pattern, rect, i), sampleWindow(frame, pattern, rect, i), scratch, scratch.built);
                 if (isMerging) counters.mergedIntervals += motion_path::mergeAbuttingIntervals(scratch.built, first, scratch.knots, sameSurface);
                 if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
                     // Over budget: keep the nearest intervals.
@@ -661,7 +665,7 @@ private:
                 // is shaded over the time it shows.
                 const std::size_t firstSpan = scratch.visible.size();
                 scratch.backgroundWeights[i] = motion_path::resolveOpaqueSpans(list, std::span(scratch.weights).subspan(begin, end - begin),
-                                                                               sampleWindow(frame, rect, i), scratch.visible);
+                                                                               sampleWindow(frame, pattern, rect, i), scratch.visible);
                 for (std::size_t v = firstSpan; v < scratch.visible.size(); ++v) scratch.visible[v].interval += begin;
                 scratch.visibleRuns[i + 1] = std::uint32_t(scratch.visible.size());
                 scratch.hasVisibleSpans[i] = 1;
@@ -671,7 +675,7 @@ private:
                 motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
                                             std::span(scratch.weights).subspan(begin, end - begin),
                                             options.exactWeights ? motion_path::OpaqueWeights::Exact : motion_path::OpaqueWeights::Slices,
-                                            sampleWindow(frame, rect, i));
+                                            sampleWindow(frame, pattern, rect, i));
         }
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
@@ -683,11 +687,11 @@ private:
         start = now;
         scratch.color.resize(numSamples);
         for (std::size_t first = 0; first < numSamples; first += std::size_t(spp)) {
-            const ShutterWindow window = sampleWindow(frame, rect, first);
+            const ShutterWindow window = sampleWindow(frame, pattern, rect, first);
             // Every line spans its pixel, so cells across x divide nothing: a line tile's samples
             // share their shadings over the pixel.
-            scratch.pixelShading.begin(frame.pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
-                                       scratch.isLineTile ? 1 : options.shading.cellsFor(frame.pattern.samplesPerAxis()));
+            scratch.pixelShading.begin(pattern, glm::dvec2(2.0 / frame.viewport.width, 2.0 / frame.viewport.height),
+                                       scratch.isLineTile ? 1 : options.shading.cellsFor(pattern.samplesPerAxis()));
             if (frame.passes) scratch.passes.begin(*frame.passes);
             for (int s = 0; s < spp; ++s) {
                 const std::size_t i = first + std::size_t(s);
@@ -738,7 +742,7 @@ private:
                     exposure::tellFirstPass(*frame.firstPass, px, py, spans, frame.geometry.triangles(), isOpaque, farthest);
                 }
                 exposure::mergeAbuttingPieces(spans);
-                scratch.pixelShading.add(s, sampleNdc(frame, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
+                scratch.pixelShading.add(s, sampleNdc(frame, pattern, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
                     return frame.scene.materials[frame.geometry.triangles()[triangle].material].baseColorTexture >= 0;
                 });
             }
@@ -785,6 +789,8 @@ std::unique_ptr<Renderer> createMotionPathRenderer(OptionMap& options) {
     o.earlyCull = options.getInt("early-cull", 1, 0, 1) != 0;
     o.closedCull = options.getInt("closed-cull", 1, 0, 1) != 0;
     o.lineSamples = options.getInt("line-samples", 0, 0, 1) != 0;
+    o.lineRows = options.getInt("line-rows", 0, 0, exposure::kMaxLineRows);
+    if (o.lineRows > 0 && !o.lineSamples) throw Error("method 'motion-path': line-rows sets the rows of line samples, and needs line-samples=1");
     o.curveSegments = options.getInt("curve-segments", o.curveSegments, 0, exposure::SegmentedGeometry::kMaxCurveSegments);
     o.spanShading = exposure::spanShadingSettings(options, "motion-path");
     o.shading = exposure::pixelShadingOptions(options, "motion-path");
