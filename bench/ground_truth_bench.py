@@ -221,7 +221,7 @@ def time_to_quality(args):
           f"(render time, least of {args.repeats} at the first N that reaches it); Cycles at {args.ladder} spp (render "
           "time, scene sync and BVH included, " +
           (f"the rungs reaching a target rendered again in this run, least of {args.repeats}" if args.retime_cycles
-           else "one render each, as stored with the renders") + ").\n")
+           else "one render each, as stored with reused renders" if args.reuse_cycles else "one render each, in this run") + ").\n")
     print("| model | target | Cycles: spp, fg PSNR, time | method | --aa | fg PSNR | time | Cycles / method |\n"
           "|---|---:|---|---|---:|---:|---:|---:|")
     streak = benchlib.Streak(args.streak, args.out, args.repeats)

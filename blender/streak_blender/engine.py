@@ -6,7 +6,7 @@ import bpy
 import numpy as np
 
 from . import export, module
-from .properties import EXACT_METHODS
+from .properties import EXACT_METHODS, LINE_METHODS
 
 # What the last render did (keys, triangles, warnings, streak's stats), for scripts and tests.
 last_render = {}
@@ -87,6 +87,10 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         options = {}
         if settings.method in ("accumulation", "stochastic", "embree"):
             options["samples"] = str(settings.samples)
+        if settings.method in LINE_METHODS and settings.line_samples:
+            options["line-samples"] = "1"
+            if settings.line_rows > 0:
+                options["line-rows"] = str(settings.line_rows)
         region = export.border_region(scene, width, height)
         transparent = scene.render.film_transparent
         last_render.update({"keys": report.keys, "keys_on_keyframes": report.keys_on_keyframes, "objects": report.objects, "triangles": report.triangles,

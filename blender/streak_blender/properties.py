@@ -14,6 +14,8 @@ METHODS = [
 
 # The methods that find exact visible spans (and refine adaptively).
 EXACT_METHODS = {"motion-path", "analytic", "higher-order"}
+# The exact methods that take line samples where nothing in a tile moves.
+LINE_METHODS = {"motion-path", "analytic"}
 
 
 class StreakRenderSettings(bpy.types.PropertyGroup):
@@ -24,6 +26,11 @@ class StreakRenderSettings(bpy.types.PropertyGroup):
                                       "Spatial Samples where a pixel and a neighbour differ by more than this in display colour or coverage, "
                                       "or where a thin part no pixel centre saw lies (0: every pixel takes them all; 0.02 refines what "
                                       "aliasing shows)", default=0.0, min=0.0, max=1.0, precision=3)
+    line_samples: bpy.props.BoolProperty(name="Line Samples", description="Motion path and analytic: where nothing in a tile moves, "
+                                         "each sample is the line through it across its pixel, so edges and texture are integrated "
+                                         "exactly along x and sampled only at the lines' rows", default=False)
+    line_rows: bpy.props.IntProperty(name="Line Rows", description="Lines per pixel where samples are lines (0: the Spatial Samples' "
+                                     "N x N rows); fewer trade edges near horizontal for time", default=0, min=0, max=256)
     keys: bpy.props.IntProperty(name="Motion Keys", description="Poses evaluated over the shutter: vertices move on straight lines between "
                                 "them (0: as many as Key Tolerance needs, up to 33, or fewer on the animation's keyframes where an even grid holds "
                                 "them within Key Tolerance)", default=0, min=0, max=65)

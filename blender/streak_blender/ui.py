@@ -3,7 +3,7 @@ and Film settings (the Cycles names streak honours), drawn while streak is the e
 
 import bpy
 
-from .properties import EXACT_METHODS
+from .properties import EXACT_METHODS, LINE_METHODS
 
 
 class StreakPanel:
@@ -28,6 +28,10 @@ class RENDER_PT_streak(StreakPanel, bpy.types.Panel):
         layout.prop(settings, "aa")
         if settings.method in EXACT_METHODS:
             layout.prop(settings, "adaptive")
+        if settings.method in LINE_METHODS:
+            layout.prop(settings, "line_samples")
+            if settings.line_samples:
+                layout.prop(settings, "line_rows")
         if settings.method in {"accumulation", "stochastic", "embree"}:
             layout.prop(settings, "samples")
         layout.prop(settings, "keys")

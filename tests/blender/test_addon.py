@@ -136,6 +136,26 @@ class Addon(unittest.TestCase):
         report = render_addon(os.path.join(TMP, "adaptive_accumulation.exr"), adaptive=0.02, method="accumulation", samples=4)
         self.assertEqual(report["status"], "done", report)
 
+    def test_line_samples_are_the_command_lines_line_samples(self):
+        # With motion blur off nothing moves, so every tile takes line samples: the add-on's
+        # Line Samples and Line Rows are the command line's options (its image is the command
+        # line's with them, nearer than the add-on's own points are), and a sampled method,
+        # which has none, leaves them out.
+        bpy.context.scene.render.use_motion_blur = False
+        report = render_addon(os.path.join(TMP, "lines.exr"), line_samples=True, line_rows=3)
+        self.assertEqual(report["status"], "done", report)
+        self.assertEqual(report["stats"]["counters"]["line_samples"], 1)
+        render_gltf(os.path.join(TMP, "lines_gltf.exr"), "--option", "line-samples=1", "--option", "line-rows=3")
+        render_addon(os.path.join(TMP, "points.exr"), line_samples=False, line_rows=0)  # (settings persist)
+        cli = streak.read_image(os.path.join(TMP, "lines_gltf.exr"))
+        _, lines_fg = psnr(streak.read_image(os.path.join(TMP, "lines.exr")), cli)
+        _, points_fg = psnr(streak.read_image(os.path.join(TMP, "points.exr")), cli)
+        print(f"add-on lines against the command line's: foreground {lines_fg:.1f} dB; the add-on's points: {points_fg:.1f} dB")
+        self.assertGreaterEqual(lines_fg, 45.0)
+        self.assertGreater(lines_fg, points_fg + 3.0)
+        report = render_addon(os.path.join(TMP, "lines_accumulation.exr"), line_samples=True, method="accumulation", samples=1)
+        self.assertEqual(report["status"], "done", report)
+
     def test_a_turning_camera_streak_follows_matches_the_gltf_export(self):
         # Looking down and panning: its up vector turns with it, and streak's camera, told the
         # pose at each end, turns by slerp as Blender's single-axis Euler curve does.

@@ -120,6 +120,8 @@ TEST(LineSamplesMethods, EachRowIsTheExactLengthOfItsLineThatEachSurfaceShows) {
         };
         const Image points = render(method, scene, kWidth, kHeight, OptionMap(), nullptr, ShadingMode::Unlit, aa);
         EXPECT_EQ(stats.counter("line_samples"), 1.0);
+        // Every tile is still, so every sample is one of the rows.
+        EXPECT_NEAR(stats.counter("intervals_per_sample_mean") * double(kWidth * kHeight * pattern.count()), stats.counter("intervals"), 1e-6);
         double lineError = 0.0, pointError = 0.0;
         for (int py = 0; py < kHeight; ++py)
             for (int px = 0; px < kWidth; ++px) {

@@ -53,6 +53,7 @@ struct Options {
 
 struct Counters {
     std::int64_t culledBackFacing = 0, tileTests = 0, tilesCulled = 0, samplesCulled = 0, samplesHidden = 0;
+    std::int64_t lineSampleSurplus = 0;  ///< samples line tiles took beyond the point pattern's (line-rows)
     raster::RootCaseCounts roots;
     double intervalSeconds = 0;
     exposure::SampleResolveCounters resolve;
@@ -109,13 +110,15 @@ public:
             const Counters& c = s.counters;
             total.culledBackFacing += c.culledBackFacing, total.tileTests += c.tileTests, total.tilesCulled += c.tilesCulled;
             total.samplesCulled += c.samplesCulled, total.samplesHidden += c.samplesHidden;
+            total.lineSampleSurplus += c.lineSampleSurplus;
             total.roots.add(c.roots);
             total.intervalSeconds += c.intervalSeconds;
             total.resolve.add(c.resolve);
         }
         RenderStats& stats = context.stats;
         const double numPixels = double(settings.width) * settings.height;
-        const double numSamples = refinement ? refinement->numSamples(numPixels, frame.pattern) : numPixels * frame.pattern.count();
+        const double numSamples = (refinement ? refinement->numSamples(numPixels, frame.pattern) : numPixels * frame.pattern.count()) +
+                                  double(total.lineSampleSurplus);
         if (refinement) refinement->record(stats, settings.adaptiveThreshold);
         exposure::recordResolveStats(stats, total.resolve, total.intervalSeconds, numSamples,
                                      refinement ? refinement->numPixelRenders(numPixels) : numPixels, m_options.resolve.maxIntervals,
@@ -414,6 +417,7 @@ private:
                 return frame.shade(triangle, 0.0f, 1.0f, exposure::lineSite(site, t0, t1, width), row, scratch.cache);
             },
             frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
+        if (scratch.isLineTile) counters.lineSampleSurplus += std::int64_t(numSamples / std::size_t(spp)) * (spp - frame.pattern.count());
         return true;
     }
 

@@ -74,6 +74,7 @@ struct Counters {
     std::int64_t fragments = 0, fragmentOverflowSamples = 0, intervals = 0, maxIntervals = 0,
                  intervalOverflowSamples = 0, splits = 0, cycles = 0, culledIntervals = 0, pathFaces = 0, mergedIntervals = 0,
                  samplesHidden = 0, snappedAwayFaces = 0;
+    std::int64_t lineSampleSurplus = 0;  ///< samples line tiles took beyond the point pattern's (line-rows)
     exposure::PixelShadingCounters shading;
     double rasterSeconds = 0, buildSeconds = 0, sortSeconds = 0, resolveSeconds = 0, shadeSeconds = 0;
 };
@@ -183,6 +184,7 @@ public:
             total.culledIntervals += c.culledIntervals, total.pathFaces += c.pathFaces, total.mergedIntervals += c.mergedIntervals;
             total.snappedAwayFaces += c.snappedAwayFaces;
             total.samplesHidden += c.samplesHidden;
+            total.lineSampleSurplus += c.lineSampleSurplus;
             total.shading.add(c.shading);
             total.rasterSeconds += c.rasterSeconds, total.buildSeconds += c.buildSeconds;
             total.sortSeconds += c.sortSeconds, total.resolveSeconds += c.resolveSeconds;
@@ -200,7 +202,8 @@ public:
 
         RenderStats& stats = context.stats;
         const double numPixels = double(settings.width) * settings.height;
-        const double numSamples = refinement ? refinement->numSamples(numPixels, fullPattern) : numPixels * fullPattern.count();
+        const double numSamples = (refinement ? refinement->numSamples(numPixels, fullPattern) : numPixels * fullPattern.count()) +
+                                  double(total.lineSampleSurplus);
         if (refinement) refinement->record(stats, settings.adaptiveThreshold);
         budget.record(stats, budgetTotal, kBytesPerFragment);
         stats.setCounter("motion_paths", double(frame.paths.size()));
@@ -401,7 +404,7 @@ private:
         const int spp = pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
         const int pixel = int(i / spp);
         return pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
-                                   frame.viewport.height);
+                             frame.viewport.height);
     }
 
     // The shutter window of sample i's row.
@@ -768,6 +771,7 @@ private:
         scratch.coverage.resize(numSamples);
         for (std::size_t i = 0; i < numSamples; ++i) scratch.coverage[i] = 1.0f - scratch.backgroundWeights[i];
         exposure::setTilePixels(rect, spp, scratch.color, scratch.coverage, image);
+        if (scratch.isLineTile) counters.lineSampleSurplus += std::int64_t(numSamples / std::size_t(spp)) * (spp - frame.pattern.count());
         return true;
     }
 
