@@ -155,6 +155,17 @@ def selection(args):
     return chosen, methods, ladder_spp
 
 
+def cycles_job(args, scene, flags):
+    """The size, time and motion steps of a model's Cycles renders (cycles_reference.render's
+    keywords, and what an earlier run's cycles.json must hold to be reused)."""
+    job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
+           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation"),
+           "motion_steps": cycles_reference.MOTION_STEPS}
+    if scene.startswith("builtin:"):  # the shutter as cycles_reference.render exports it: the first second, at 24 fps
+        job.update(frame=0.0, shutter=24.0)
+    return job
+
+
 def model_renders(args, name, path, flags, ladder_spp):
     """A model's scene file, its folder under args.out and its Cycles renders at the ladder's spp
     and the reference's: rendered now, or an earlier run's with --reuse-cycles."""
@@ -162,11 +173,7 @@ def model_renders(args, name, path, flags, ladder_spp):
     scene, out = path if is_builtin else os.path.join(SCENES, path), os.path.join(args.out, name)
     os.makedirs(out, exist_ok=True)
     spp_list = ladder_spp + [args.spp]
-    job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
-           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation"),
-           "motion_steps": cycles_reference.MOTION_STEPS}
-    if is_builtin:  # the shutter as cycles_reference.render exports it: the first second, at 24 fps
-        job.update(frame=0.0, shutter=24.0)
+    job = cycles_job(args, scene, flags)
     renders = earlier_renders(out, job, spp_list) if args.reuse_cycles else None
     if renders is None:
         renders = cycles_reference.render(scene, scene_flags(flags), spp_list, out, streak=args.streak,
@@ -193,18 +200,14 @@ def retimed(args, scene, flags, out, cycles_rungs, targets):
     timed in (a stored render's time is its own session's: the same ToyCar job took 3.10 s at
     32 spp in one and 0.78 s in another), each the least of args.repeats renders; their images
     are written beside the stored ones and not scored."""
-    needed = sorted({r[0] for r in (next((r for r in cycles_rungs if r[1] >= t), None) for t in targets) if r})
+    reaching = (next((rung for rung in cycles_rungs if rung[1] >= target), None) for target in targets)
+    needed = sorted({rung[0] for rung in reaching if rung})
     if not needed:
         return cycles_rungs
-    job = {"width": args.width, "height": args.height, "frame": float(flags.get("frame", 0)),
-           "shutter": float(flags.get("shutter", 0.5)), "animation": flags.get("animation"),
-           "motion_steps": cycles_reference.MOTION_STEPS}
-    if scene.startswith("builtin:"):
-        job.update(frame=0.0, shutter=24.0)
     seconds = {}
     for _ in range(args.repeats):
         again = cycles_reference.render(scene, scene_flags(flags), needed, os.path.join(out, "retimed"), streak=args.streak,
-                                        blender=args.blender, **job)
+                                        blender=args.blender, **cycles_job(args, scene, flags))
         for spp in needed:
             seconds[spp] = min(seconds.get(spp, math.inf), again[spp]["seconds"])
     return [(spp, fg, seconds.get(spp, s)) for spp, fg, s in cycles_rungs]
