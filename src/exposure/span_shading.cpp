@@ -129,6 +129,13 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     std::array<SurfacePoint, 3> ends;
     // A still point is the same at every time: its middle serves as both ends.
     const bool isStill = point.isStill(t0, t1);
+    if (isStill && !point.hasBoxFootprint()) {
+        // Nothing the point is shaded from moves: the span is one instant, shaded as a
+        // rasterizer shades a sample (the unswept lookup below is a GPU's either way), at a
+        // rasterizer's cost. A box counts the triangle's texels and keeps its own filter.
+        if (!point.at(times[1], withFootprint, ends[1])) return {glm::vec3(0.0f), 0.0f};
+        return shadeSurface(scene, mode, ends[1], scene.camera.positionAt(times[1]));
+    }
     if (isStill) {
         if (!point.at(times[1], withFootprint, ends[1])) return {glm::vec3(0.0f), 0.0f};
         ends[0] = ends[2] = ends[1];

@@ -14,7 +14,12 @@ TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, co
       m_isBox(site.boxFootprint),
       m_triangle(triangle),
       m_ndc(site.ndc),
-      m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])), m_cache(cache) {}
+      m_cache(cache) {}
+
+const std::array<glm::vec2, 3>& TriangleSurfacePoint::cornerUvs() const {
+    if (!m_hasUv) m_uv = m_geometry.flat().cornerUvs(m_geometry.flat().triangles()[m_triangle]), m_hasUv = true;
+    return m_uv;
+}
 
 const TriangleSegment& TriangleSurfacePoint::select(float t) const {
     const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t);
@@ -33,7 +38,7 @@ void TriangleSurfacePoint::makeUvRatio() const {
     for (int i = 0; i < 3; ++i) {
         const raster::Quadratic e = m_moving->edgeFunction((i + 1) % 3, m_ndc);
         m_weights[std::size_t(i)] = e;
-        const glm::dvec2 uv(m_uv[i]);
+        const glm::dvec2 uv(cornerUvs()[i]);
         m_uvNumerator[0] += e.a * uv, m_uvNumerator[1] += e.b * uv, m_uvNumerator[2] += e.c * uv;
         m_uvDenominator.a += e.a, m_uvDenominator.b += e.b, m_uvDenominator.c += e.c;
     }
@@ -63,10 +68,14 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     }
     std::array<glm::vec3, 3> world, normal;
     const float uf = float(u);
-    const SegmentedGeometry::WorldCorners corners = m_geometry.cornersOf(segment);
-    for (int i = 0; i < 3; ++i) {
-        world[i] = glm::mix(corners.world0[i], corners.world1[i], uf);
-        normal[i] = glm::mix(corners.normal0[i], corners.normal1[i], uf);
+    const SegmentedGeometry::WorldCorners& corners = m_cache.cornersOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
+    if (segment.isWorldStill) {
+        world = corners.world0, normal = corners.normal0;
+    } else {
+        for (int i = 0; i < 3; ++i) {
+            world[i] = glm::mix(corners.world0[i], corners.world1[i], uf);
+            normal[i] = glm::mix(corners.normal0[i], corners.normal1[i], uf);
+        }
     }
     const FlatGeometry& flat = m_geometry.flat();
     out = flat.surfacePoint(flat.triangles()[m_triangle], world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
@@ -89,10 +98,8 @@ bool TriangleSurfacePoint::vertexColorAt(float t, glm::vec4& color) const {
 }
 
 bool TriangleSurfacePoint::isStill(float t0, float t1) const {
-    const TriangleSegment& segment = m_geometry.segmentAt(m_triangle, t0);
-    if (&segment != &m_geometry.segmentAt(m_triangle, t1) || !m_geometry.scene().camera.isStatic()) return false;
-    const SegmentedGeometry::WorldCorners corners = m_geometry.cornersOf(segment);
-    return corners.world0 == corners.world1 && corners.normal0 == corners.normal1;
+    const TriangleSegment& segment = select(t0);
+    return segment.isWorldStill && &segment == &m_geometry.segmentAt(m_triangle, t1) && m_geometry.scene().camera.isStatic();
 }
 
 int TriangleSurfacePoint::materialIndex() const { return int(m_geometry.flat().triangles()[m_triangle].material); }
@@ -104,7 +111,7 @@ bool TriangleSurfacePoint::uvAt(float t, glm::vec2& uv) const {
     const double denominator = m_uvDenominator(u);
     if (denominator == 0.0 || !std::isfinite(denominator)) return false;
     // A box's taps are clipped to the triangle instead (TextureFootprint::clipTo).
-    if (m_clamp && !m_isBox && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, m_uv, uv)) return true;
+    if (m_clamp && !m_isBox && heldUvOutside(glm::dvec3(m_weights[0](u), m_weights[1](u), m_weights[2](u)) / denominator, cornerUvs(), uv)) return true;
     uv = glm::vec2(((m_uvNumerator[0] * u + m_uvNumerator[1]) * u + m_uvNumerator[2]) / denominator);
     return true;
 }

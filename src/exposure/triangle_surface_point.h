@@ -23,10 +23,20 @@ public:
             return raster::MovingTriangle(s.clip0, s.clip1);
         });
     }
-    void clear() { m_cache.clear(); }
+    // The segment's key poses (SegmentedGeometry::cornersOf), kept for the next call: a pixel's
+    // samples shade the same triangle one after another (PixelShading sorts by triangle).
+    const SegmentedGeometry::WorldCorners& cornersOf(const SegmentedGeometry& geometry, std::uint32_t segment) {
+        if (segment != m_cornersSegment || &geometry != m_cornersGeometry)
+            m_corners = geometry.cornersOf(geometry.segments()[segment]), m_cornersSegment = segment, m_cornersGeometry = &geometry;
+        return m_corners;
+    }
+    void clear() { m_cache.clear(), m_cornersGeometry = nullptr; }
 
 private:
     TriangleCache<raster::MovingTriangle> m_cache;
+    const SegmentedGeometry* m_cornersGeometry = nullptr;
+    std::uint32_t m_cornersSegment = 0;
+    SegmentedGeometry::WorldCorners m_corners;
 };
 
 // A triangle under one pixel sample at any time of the shutter, for span shading: exact
@@ -42,7 +52,7 @@ public:
     bool at(float t, bool withFootprint, SurfacePoint& out) const override;
     bool uvAt(float t, glm::vec2& uv) const override;
     bool vertexColorAt(float t, glm::vec4& color) const override;
-    const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
+    const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &cornerUvs() : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
     int materialIndex() const override;
     // Still: one segment holds [t0, t1], its corners and normals do not move, nor does the camera.
@@ -61,7 +71,10 @@ private:
     bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
-    std::array<glm::vec2, 3> m_uv;
+    // The triangle's corner uvs, read on first use (a still point's shading never asks).
+    const std::array<glm::vec2, 3>& cornerUvs() const;
+    mutable bool m_hasUv = false;
+    mutable std::array<glm::vec2, 3> m_uv;
     mutable const TriangleSegment* m_segment = nullptr;  ///< the segment the members below belong to
     MovingTriangleCache& m_cache;
     mutable const raster::MovingTriangle* m_moving = nullptr;

@@ -23,8 +23,10 @@ public:
     bool saysMaterial = false;  ///< materialIndex() tells it, as the methods' points do
     std::function<glm::vec4(float)> vertexColor = [](float) { return glm::vec4(1.0f); };
     mutable int evaluations = 0, footprints = 0;  ///< at() calls, and those asking for a footprint
+    bool saysStill = false;  ///< isStill() says so, as a method's point does where nothing moves
 
     int materialIndex() const override { return saysMaterial ? int(material) : -1; }
+    bool isStill(float, float) const override { return saysStill; }
     bool at(float t, bool withFootprint, SurfacePoint& out) const override {
         ++evaluations, footprints += withFootprint;
         out = {};
@@ -82,6 +84,40 @@ TEST(ShadeTimeSpan, AStillPointShadesAsAnInstantDoes) {
                 const ShadedColor span = shadeTimeSpan(scene, ShadingMode::Unlit, 0.2f, 0.9f, point, settings);
                 EXPECT_NEAR(span.color.x, still.color.x, 1e-6f)
                     << "scale " << scale << " uv " << uv.x << "," << uv.y << " swept " << (filter == SpanTextureFilter::Swept);
+            }
+        }
+    }
+}
+
+TEST(ShadeTimeSpan, AStillSpanIsShadedAsTheMovingPathShadesAPointThatDoesNotMove) {
+    // A point that says it is still is shaded as one instant (a rasterizer's shading); the same
+    // point not saying so goes through the moving path (the span's lighting, its swept lookup
+    // or taps), which must come to the same colour and opacity: lit, unlit, the normal pass,
+    // and a masked material, whose taps keep their own alpha cutoff.
+    Scene scene = stepScene();
+    scene.camera.open.position = scene.camera.close.position = glm::vec3(0.3f, 0.2f, 2.0f);
+    scene.materials[0].specular = 0.5f, scene.materials[0].shininess = 20.0f;
+    for (const AlphaMode alphaMode : {AlphaMode::Opaque, AlphaMode::Mask}) {
+        scene.materials[0].alphaMode = alphaMode;
+        for (const ShadingMode mode : {ShadingMode::Phong, ShadingMode::Unlit, ShadingMode::Normal}) {
+            for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
+                ScriptedPoint still, moving;
+                for (ScriptedPoint* point : {&still, &moving}) {
+                    point->uv = [](float) { return glm::vec2(128.4f / 256.0f, 0.3f); };
+                    point->normal = [](float) { return glm::normalize(glm::vec3(0.2f, 0.3f, 1.0f)); };
+                    point->vertexColor = [](float) { return glm::vec4(0.8f, 0.9f, 1.0f, 0.7f); };
+                    point->footprint = glm::vec2(1.5f / 256.0f, 0.0f);
+                    point->saysMaterial = true;
+                }
+                still.saysStill = true;
+                SpanShadingSettings settings;
+                settings.textureFilter = filter;
+                const ShadedColor a = shadeTimeSpan(scene, mode, 0.1f, 0.8f, still, settings);
+                const ShadedColor b = shadeTimeSpan(scene, mode, 0.1f, 0.8f, moving, settings);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.color[c], b.color[c], 1e-5f) << "mode " << int(mode) << " mask " << (alphaMode == AlphaMode::Mask);
+                EXPECT_NEAR(a.alpha, b.alpha, 1e-6f);
+                EXPECT_GT(a.color.x, 0.0f);
+                EXPECT_LT(still.evaluations, moving.evaluations) << "the still point is shaded at one instant";
             }
         }
     }
