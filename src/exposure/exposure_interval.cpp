@@ -101,6 +101,20 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
                     const ExactDepth* exactDepth, double* misorderedTime, double* overlapTime, std::vector<VisibleSpan>* visible) {
     std::fill(weights.begin(), weights.end(), 0.0f);
     float background = 0.0f;
+    if (intervals.size() == 1) {
+        // A lone interval (most samples of a still scene: [0, 1]): the pieces the sweep below
+        // would find, background before and after it, in its order of sums, without sorting
+        // cuts. Where it is empty or not a number, the sweep decides.
+        const float t0 = std::clamp(intervals[0].t0, 0.0f, 1.0f), t1 = std::clamp(intervals[0].t1, 0.0f, 1.0f);
+        if (t0 < t1) {
+            if (t0 > 0.0f) background += window.measure(0.0f, t0);
+            const float share = window.measure(t0, t1);
+            weights[0] += share;
+            if (visible && share > 0.0f) appendVisibleSpan(*visible, 0, t0, t1, share);
+            if (t1 < 1.0f) background += window.measure(t1, 1.0f);
+            return background;
+        }
+    }
     forEachPiece(intervals, [&](float a, float b, std::span<std::size_t> covering) {
         const float share = window.measure(a, b);
         if (covering.empty()) {

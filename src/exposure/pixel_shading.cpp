@@ -51,12 +51,25 @@ void PixelShading::formClusters(bool isBoxCentred) {
     std::iota(m_order.begin(), m_order.end(), 0u);
     // Each sample's pieces come sorted by (triangle, start) already, and a sample has one cell:
     // the stable sort keeps each sample's order.
-    std::stable_sort(m_order.begin(), m_order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    auto isBefore = [&](std::uint32_t a, std::uint32_t b) {
         const Pending &pa = m_pending[a], &pb = m_pending[b];
         if (pa.piece.triangle != pb.piece.triangle) return pa.piece.triangle < pb.piece.triangle;
         if (pa.cell != pb.cell) return pa.cell < pb.cell;
         return pa.piece.t0 < pb.piece.t0;
-    });
+    };
+    // A pixel's few pieces, mostly of one or two triangles, sort in place by insertion (stable,
+    // and about linear when they are); std::stable_sort takes a buffer from the heap each call.
+    constexpr std::size_t kInsertionSortMost = 64;
+    if (m_order.size() <= kInsertionSortMost) {
+        for (std::size_t i = 1; i < m_order.size(); ++i) {
+            const std::uint32_t value = m_order[i];
+            std::size_t j = i;
+            for (; j > 0 && isBefore(value, m_order[j - 1]); --j) m_order[j] = m_order[j - 1];
+            m_order[j] = value;
+        }
+    } else {
+        std::stable_sort(m_order.begin(), m_order.end(), isBefore);
+    }
     m_clusters.clear();
     glm::dvec2 ndcSum(0.0), lo(0.0), hi(0.0);
     double weightSum = 0.0;

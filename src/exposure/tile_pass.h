@@ -131,10 +131,11 @@ inline void setTilePixels(const raster::PixelBounds& rect, int spp, std::span<co
 // are then shaded together as `shading` says (textured triangles, isTextured(triangle), in cells) by shade(triangle, t0, t1, ShadingSite, pixel row)
 // (PixelShading), and the tile's pixels become the mean of their samples, colour and coverage.
 // A sample with no intervals is the background. With `passes`, each pixel's passes are written
-// from what resolve() adds to pixelPasses.
+// from what resolve() adds to pixelPasses. sampleNdc holds the tile's samples in NDC
+// (tileSampleNdc of rect and pattern), indexed as the runs.
 template <class Record, class IsTextured, class Resolve, class Shade>
 void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, int width, int height, const glm::vec3& background,
-                 std::span<const Record> bySample, std::span<const std::uint32_t> runs, std::vector<ExposureInterval>& list,
+                 std::span<const glm::dvec2> sampleNdc, std::span<const Record> bySample, std::span<const std::uint32_t> runs, std::vector<ExposureInterval>& list,
                  const std::vector<VisiblePiece>& pieces, std::vector<glm::vec3>& color, std::vector<float>& coverage, Image& image,
                  const PixelShadingOptions& shading,
                  PixelShading& pixelShading, SampleResolveCounters& counters, PassFrame* passes, PixelPasses& pixelPasses, IsTextured&& isTextured,
@@ -165,7 +166,7 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
                 color[i] = background, coverage[i] = 0.0f;
                 continue;
             }
-            const glm::dvec2 ndc = pattern.ndcOf(px, row, s, width, height);
+            const glm::dvec2 ndc = sampleNdc[i];
             list.clear();
             for (std::uint32_t k = runs[i]; k < runs[i + 1]; ++k) list.push_back(bySample[k].interval);
             const ResolvedSample resolved = resolve(ndc, row, list);
@@ -406,7 +407,8 @@ inline void sortRunsBySource(std::span<const std::uint32_t> runs, std::vector<Ti
 // supplies triangleOf(source) and shade(triangle, t0, t1, ShadingSite, pixel row) ->
 // ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`,
 // and their passes, when asked for, to `passes`; a first pass of adaptive sampling tells
-// `firstPass` the surfaces each pixel showed.
+// `firstPass` the surfaces each pixel showed. scratch.sampleNdc holds the tile's samples
+// (tileSampleNdc of rect and pattern), as the search for intervals took them.
 template <class Cache, class Counters, class TriangleOf, class Shade>
 void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
                       const FlatTriangles& triangles, int width, int height, const ExactResolveOptions& options,
@@ -419,7 +421,7 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
     scratch.counters.intervalSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - intervalStart).count();
 
     auto materialOf = [&](std::uint32_t triangle) -> const Material& { return scene.materials[triangles[triangle].material]; };
-    resolveTile(rect, pattern, width, height, scene.background, std::span<const TileRecord>(scratch.bySample),
+    resolveTile(rect, pattern, width, height, scene.background, std::span<const glm::dvec2>(scratch.sampleNdc), std::span<const TileRecord>(scratch.bySample),
                 std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, scratch.coverage, image,
                 options.shading, scratch.pixelShading, scratch.counters.resolve, passes, scratch.passes,
                 [&](std::uint32_t triangle) { return materialOf(triangle).baseColorTexture >= 0; },

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <utility>
+
 namespace streak::exposure {
 
 namespace {
@@ -129,6 +132,39 @@ TEST(Resolve, SharesAreTheRowsExposure) {
     list[1].alpha = 0.5f;
     EXPECT_NEAR(resolveTranslucent(list, w, row), 0.75f, 1e-6f);
     EXPECT_NEAR(w[1], 0.25f, 1e-6f);
+}
+
+TEST(Resolve, ALoneIntervalTakesTheSharesTheSweepGivesIt) {
+    // A lone interval is resolved without the sweep; the same interval with a second one wholly
+    // behind it over the same times goes through the sweep, which cuts at the same times: the
+    // shares, the background and the visible span must be the same to the bit. Inside the
+    // shutter, at its ends, reaching past them, under a curve and in a rolling row.
+    const ShutterCurve triangle = ShutterCurve::parse("triangle");
+    for (const ShutterWindow window : {ShutterWindow{}, ShutterWindow{0.0f, 1.0f, &triangle}, ShutterWindow{0.3f, 0.4f, nullptr}}) {
+        for (const auto& [t0, t1] : {std::pair{0.0f, 1.0f}, std::pair{0.2f, 0.7f}, std::pair{0.0f, 0.35f}, std::pair{0.6f, 1.0f},
+                                     std::pair{-0.5f, 0.4f}, std::pair{0.45f, 1.5f}, std::pair{0.1f, 0.1f}}) {
+            std::vector<ExposureInterval> lone{interval(t0, t1, 2.0f, 3.0f)}, swept{lone[0], interval(t0, t1, 50.0f, 60.0f)};
+            std::vector<float> wLone(1), wSwept(2);
+            std::vector<VisibleSpan> vLone, vSwept;
+            const float bLone = resolveOpaque(lone, wLone, window, nullptr, nullptr, nullptr, &vLone);
+            const float bSwept = resolveOpaque(swept, wSwept, window, nullptr, nullptr, nullptr, &vSwept);
+            EXPECT_EQ(bLone, bSwept) << t0 << ".." << t1;
+            EXPECT_EQ(wLone[0], wSwept[0]) << t0 << ".." << t1;
+            EXPECT_EQ(wSwept[1], 0.0f);
+            ASSERT_EQ(vLone.size(), vSwept.size()) << t0 << ".." << t1;
+            for (std::size_t k = 0; k < vLone.size(); ++k) {
+                EXPECT_EQ(vLone[k].interval, vSwept[k].interval);
+                EXPECT_EQ(vLone[k].t0, vSwept[k].t0);
+                EXPECT_EQ(vLone[k].t1, vSwept[k].t1);
+                EXPECT_EQ(vLone[k].weight, vSwept[k].weight);
+            }
+            // And the closed form: the window's measure of the clamped interval, the rest
+            // background.
+            const float c0 = std::clamp(t0, 0.0f, 1.0f), c1 = std::clamp(t1, 0.0f, 1.0f);
+            EXPECT_NEAR(wLone[0], window.measure(c0, c1), 1e-6f);
+            EXPECT_NEAR(bLone + wLone[0], window.measure(0.0f, 1.0f), 1e-6f);
+        }
+    }
 }
 
 TEST(Resolve, TranslucentHandMadeLists) {

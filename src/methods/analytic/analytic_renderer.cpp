@@ -322,13 +322,14 @@ private:
                                 ++counters.culledBackFacing;
                                 continue;
                             }
-                            exposure::TileRecord r;
+                            // (Written in place: copying in a record built on the stack stalled
+                            // on its partly written fields.)
+                            exposure::TileRecord& r = scratch.records.emplace_back();
                             r.sample = sample;
                             const double dt = double(segment.t1) - double(segment.t0);
                             r.interval.t0 = float(segment.t0 + b[k] * dt), r.interval.t1 = float(segment.t0 + b[k + 1] * dt);
                             r.interval.depth0 = float(s0.viewDepth), r.interval.depth1 = float(s1.viewDepth);
                             r.interval.source = index;
-                            scratch.records.push_back(r);
                             // What a mesh's opaque intervals cover together (coverStretch): a
                             // moving surface passes its triangles over a sample one after another.
                             if (isOccluder) {

@@ -103,6 +103,7 @@ struct TileScratch {
     std::vector<std::uint32_t> seenPaths;  ///< an adaptive first pass's paths with intervals in the tile (noteUnseenItems)
     exposure::EarlyCull earlyCull;
     bool isLineTile = false;               ///< this tile's samples are lines across their pixels (renderRect)
+    std::vector<glm::dvec2> sampleNdc;     ///< the tile's samples in NDC (exposure::tileSampleNdc of its pattern)
     std::vector<glm::vec3> color;
     std::vector<float> coverage;           ///< per sample
     exposure::PixelPasses passes;          ///< one pixel's, when passes are asked for
@@ -329,7 +330,8 @@ private:
     static bool intervalOf(const exposure::TriangleSegment& path, const raster::MovingTriangle& moving, const FlatTriangle& tri,
                            const glm::dvec2& ndc, float t0, float t1, Interval& interval) {
         const double u0 = path.localTime(t0), u1 = path.localTime(t1);
-        const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.sample(u1, ndc);
+        // (A still triangle is the same at both ends.)
+        const raster::HomogeneousSample s0 = moving.sample(u0, ndc), s1 = moving.isStill() ? s0 : moving.sample(u1, ndc);
         // The triangle cannot turn over inside a span (its edges would have to pass the sample),
         // so its facing at mid-span is its facing throughout.
         const bool isFrontFacing = moving.isFrontFacing(0.5 * (u0 + u1));
@@ -399,14 +401,6 @@ private:
         out.push_back(interval);
     }
 
-    // NDC of sample i of a tile (pixel-major, pattern position minor).
-    static glm::dvec2 sampleNdc(const Frame& frame, const raster::SamplePattern& pattern, const raster::PixelBounds& rect, std::size_t i) {
-        const int spp = pattern.count(), tileWidth = rect.x1 - rect.x0 + 1;
-        const int pixel = int(i / spp);
-        return pattern.ndcOf(rect.x0 + pixel % tileWidth, rect.y0 + pixel / tileWidth, int(i % spp), frame.viewport.width,
-                             frame.viewport.height);
-    }
-
     // The shutter window of sample i's row.
     static ShutterWindow sampleWindow(const Frame& frame, const raster::SamplePattern& pattern, const raster::PixelBounds& rect, std::size_t i) {
         const int tileWidth = rect.x1 - rect.x0 + 1;
@@ -452,8 +446,8 @@ private:
     // Marks `sample` of rect (EarlyCull) where the still path covers it all the shutter: its
     // exact spans there are [0, 1] and seen, and the build will make that interval.
     static void coverByStillPath(const Frame& frame, const exposure::TriangleSegment& path, const raster::MovingTriangle& moving,
-                                 const FlatTriangle& tri, const raster::PixelBounds& rect, std::uint32_t sample, TileScratch& scratch) {
-        const glm::dvec2 ndc = sampleNdc(frame, frame.pattern, rect, sample);  // (not a line tile)
+                                 const FlatTriangle& tri, std::uint32_t sample, TileScratch& scratch) {
+        const glm::dvec2 ndc = scratch.sampleNdc[sample];
         scratch.events.clear();
         frame.exactSpans(path, moving, ndc, scratch.events);
         Interval interval;
@@ -472,6 +466,9 @@ private:
         // adaptive sampling's first pass, one point per pixel. A line tile takes its own rows.
         scratch.isLineTile = frame.canLineSample && !frame.firstPass && exposure::isLineTile(items, frame.paths, frame.scene.camera.zNear);
         const raster::SamplePattern& pattern = scratch.isLineTile ? frame.linePattern : frame.pattern;
+        // (A table per tile: a sample's NDC takes four divisions, and each sample asks for it at
+        // its build and its shading, and a still path's at its early cover too.)
+        exposure::tileSampleNdc(rect, pattern, frame.viewport.width, frame.viewport.height, scratch.sampleNdc);
         const int spp = pattern.count();
         const std::size_t numSamples = std::size_t(tileWidth) * tileHeight * spp;
         const Options& options = frame.options;
@@ -546,7 +543,7 @@ private:
                         return;
                     }
                     scratch.fragments.push_back({sample, index, segment.nearness});
-                    if (still) coverByStillPath(frame, segment, *still, tri, rect, sample, scratch);
+                    if (still) coverByStillPath(frame, segment, *still, tri, sample, scratch);
                 };
                 for (int k = 0; k < scratch.setup.count; ++k) {
                     raster::ScreenTriangle& face = scratch.setup.triangles[k].screen;
@@ -603,7 +600,7 @@ private:
                     std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
                 }
                 const std::size_t first = scratch.built.size();
-                buildIntervals(frame, fragments, sampleNdc(frame, pattern, rect, i), sampleWindow(frame, pattern, rect, i), scratch, scratch.built);
+                buildIntervals(frame, fragments, scratch.sampleNdc[i], sampleWindow(frame, pattern, rect, i), scratch, scratch.built);
                 if (isMerging) counters.mergedIntervals += motion_path::mergeAbuttingIntervals(scratch.built, first, scratch.knots, sameSurface);
                 if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
                     // Over budget: keep the nearest intervals.
@@ -745,7 +742,7 @@ private:
                     exposure::tellFirstPass(*frame.firstPass, px, py, spans, frame.geometry.triangles(), isOpaque, farthest);
                 }
                 exposure::mergeAbuttingPieces(spans);
-                scratch.pixelShading.add(s, sampleNdc(frame, pattern, rect, i), std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
+                scratch.pixelShading.add(s, scratch.sampleNdc[i], std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
                     return frame.scene.materials[frame.geometry.triangles()[triangle].material].baseColorTexture >= 0;
                 });
             }
