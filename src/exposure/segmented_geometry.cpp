@@ -142,7 +142,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
                 s.clip1[i] = clipFromWorld[k + 1] * glm::vec4(m_positions[k + 1][v[i]], 1.0f);
             }
             finishSegment(s, triangles[tri].isDoubleSided);
-            s.isWorldStill = isWorldStill(s);
+            s.isStill = isStill(s);
         }
     });
     // A camera that does not turn maps straight clip paths to straight world paths (clip space is
@@ -275,7 +275,7 @@ void SegmentedGeometry::mergeLinearRuns(const raster::Viewport& viewport, double
                     TriangleSegment merged = slots[a];
                     merged.t1 = slots[b].t1, merged.clip1 = slots[b].clip1, merged.key1 = slots[b].key1;
                     finishSegment(merged, triangles[tri].isDoubleSided);
-                    merged.isWorldStill = isWorldStill(merged);
+                    merged.isStill = isStill(merged);
                     for (std::size_t k = a; k <= b; ++k) slots[k] = merged;
                     localMerged += std::int64_t(b - a);
                 }
@@ -291,7 +291,9 @@ const TriangleSegment& SegmentedGeometry::segmentAt(std::uint32_t triangle, floa
     return segment(triangle, segment(triangle, std::clamp(int(t * float(m_numSegments)), 0, m_numSegments - 1)).key0);
 }
 
-bool SegmentedGeometry::isWorldStill(const TriangleSegment& segment) const {
+bool SegmentedGeometry::isStill(const TriangleSegment& segment) const {
+    // (The clip corners are at hand: most moving segments stop there.)
+    if (segment.clip0 != segment.clip1) return false;
     const glm::uvec3 v = m_flat.triangles()[segment.triangle].vertices;
     for (int i = 0; i < 3; ++i)
         if (m_positions[segment.key0][v[i]] != m_positions[segment.key1][v[i]] || m_normals[segment.key0][v[i]] != m_normals[segment.key1][v[i]])

@@ -28,7 +28,7 @@ struct TriangleSegment {
     float nearness = 0.0f;                           ///< 1 / smallest corner view depth; 0 if a corner is at or behind the eye
     std::int8_t orientation = 0;                     ///< +1 front facing throughout, -1 back facing throughout, 0 turns over (or reaches behind the eye)
     bool isBackFacingThroughout = false;             ///< single-sided, or on a closed surface (ClosedSurfaces), and seen from behind at every time: never visible
-    bool isWorldStill = false;                       ///< its corners' world positions and normals the same at both ends (SegmentedGeometry::cornersOf)
+    bool isStill = false;                            ///< nothing of it moves: its clip corners, and its world corners and normals (SegmentedGeometry::cornersOf), the same at both ends
     // Its ends as segment ends k / numSegments: key1 = key0 + 1, or more where the triangle's
     // motion stays linear over several segments and they are merged into one
     // (SegmentedGeometry, kMergeTolerancePixels). Every slot of a merged run holds the merged
@@ -108,9 +108,10 @@ public:
         std::array<glm::vec3, 3> world0, world1, normal0, normal1;
     };
     WorldCorners cornersOf(const TriangleSegment& segment) const;
-    // Whether a segment's corners keep their world positions and normals from its key0 to its
-    // key1 (TriangleSegment::isWorldStill, set for every segment at construction).
-    bool isWorldStill(const TriangleSegment& segment) const;
+    // Whether nothing of a segment moves from its key0 to its key1: its clip corners (so not under
+    // a moving camera), world corners and normals (TriangleSegment::isStill, set for every
+    // segment at construction).
+    bool isStill(const TriangleSegment& segment) const;
     std::int64_t numBackFacing() const { return m_numBackFacing; }
     // The closed surfaces whose back faces were dropped (cullClosed), and their triangles.
     std::int64_t numClosedSurfaces() const { return m_numClosedSurfaces; }

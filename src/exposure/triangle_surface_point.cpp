@@ -69,7 +69,7 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
     std::array<glm::vec3, 3> world, normal;
     const float uf = float(u);
     const SegmentedGeometry::WorldCorners& corners = m_cache.cornersOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
-    if (segment.isWorldStill) {
+    if (segment.isStill) {
         world = corners.world0, normal = corners.normal0;
     } else {
         for (int i = 0; i < 3; ++i) {
@@ -99,7 +99,7 @@ bool TriangleSurfacePoint::vertexColorAt(float t, glm::vec4& color) const {
 
 bool TriangleSurfacePoint::isStill(float t0, float t1) const {
     const TriangleSegment& segment = select(t0);
-    return segment.isWorldStill && &segment == &m_geometry.segmentAt(m_triangle, t1) && m_geometry.scene().camera.isStatic();
+    return segment.isStill && &segment == &m_geometry.segmentAt(m_triangle, t1) && m_geometry.scene().camera.isStatic();
 }
 
 int TriangleSurfacePoint::materialIndex() const { return int(m_geometry.flat().triangles()[m_triangle].material); }
