@@ -92,12 +92,17 @@ TEST(ShadeTimeSpan, AStillPointShadesAsAnInstantDoes) {
 TEST(ShadeTimeSpan, AStillSpanIsShadedAsTheMovingPathShadesAPointThatDoesNotMove) {
     // A point that says it is still is shaded as one instant (a rasterizer's shading); the same
     // point not saying so goes through the moving path (the span's lighting, its swept lookup
-    // or taps), which must come to the same colour and opacity: lit, unlit, the normal pass,
-    // and a masked material, whose taps keep their own alpha cutoff.
+    // or taps), which must come to the same colour and opacity: lit, unlit, the normal pass
+    // (whose opacity is the unlit shading's, its texture filtered as the beauty's), and masked
+    // and blended materials, over a texture whose alpha alternates texel by texel.
     Scene scene = stepScene();
+    std::vector<glm::vec4> texels(256 * 256);
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) texels[std::size_t(y) * 256 + x] = glm::vec4(x < 128 ? 0.05f : 0.9f, 0.3f, 0.1f, x % 2 ? 0.3f : 1.0f);
+    scene.textures[0] = Texture::fromLinear(256, 256, std::move(texels), WrapMode::ClampToEdge, WrapMode::ClampToEdge);
     scene.camera.open.position = scene.camera.close.position = glm::vec3(0.3f, 0.2f, 2.0f);
     scene.materials[0].specular = 0.5f, scene.materials[0].shininess = 20.0f;
-    for (const AlphaMode alphaMode : {AlphaMode::Opaque, AlphaMode::Mask}) {
+    for (const AlphaMode alphaMode : {AlphaMode::Opaque, AlphaMode::Mask, AlphaMode::Blend}) {
         scene.materials[0].alphaMode = alphaMode;
         for (const ShadingMode mode : {ShadingMode::Phong, ShadingMode::Unlit, ShadingMode::Normal}) {
             for (const SpanTextureFilter filter : {SpanTextureFilter::Taps, SpanTextureFilter::Swept}) {
@@ -115,7 +120,7 @@ TEST(ShadeTimeSpan, AStillSpanIsShadedAsTheMovingPathShadesAPointThatDoesNotMove
                 const ShadedColor a = shadeTimeSpan(scene, mode, 0.1f, 0.8f, still, settings);
                 const ShadedColor b = shadeTimeSpan(scene, mode, 0.1f, 0.8f, moving, settings);
                 for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.color[c], b.color[c], 1e-5f) << "mode " << int(mode) << " mask " << (alphaMode == AlphaMode::Mask);
-                EXPECT_NEAR(a.alpha, b.alpha, 1e-6f);
+                EXPECT_NEAR(a.alpha, b.alpha, 1e-6f) << "mode " << int(mode) << " alpha mode " << int(alphaMode);
                 EXPECT_GT(a.color.x, 0.0f);
                 EXPECT_LT(still.evaluations, moving.evaluations) << "the still point is shaded at one instant";
             }
