@@ -67,6 +67,10 @@ struct Fragment {
     std::uint32_t sample = 0;  ///< within the tile
     std::uint32_t path = 0;    ///< index into the segment paths
     float nearness = 0.0f;     ///< 1 / the path's smallest view depth: which to keep on overflow
+    // A still opaque path's depth at the sample where the early cover found it covering the
+    // sample all the shutter (its interval is then [0, 1] at this depth, as the build would
+    // find it again); NaN where that is not known.
+    float stillDepth = std::numeric_limits<float>::quiet_NaN();
 };
 
 // Counters of one thread, summed at the end.
@@ -349,6 +353,15 @@ private:
                         TileScratch& scratch, std::vector<Interval>& out) const {
         for (std::size_t i = 0; i < fragments.size(); ++i) {
             if (i > 0 && fragments[i].path == fragments[i - 1].path) continue;
+            if (!std::isnan(fragments[i].stillDepth)) {
+                // What coverByStillPath found: the loop below would find [0, 1] at this depth
+                // again (an opaque path, in every row's window).
+                Interval interval;
+                interval.t0 = 0.0f, interval.t1 = 1.0f, interval.depth0 = interval.depth1 = fragments[i].stillDepth;
+                interval.source = fragments[i].path;
+                out.push_back(interval);
+                continue;
+            }
             const exposure::TriangleSegment& path = frame.paths[fragments[i].path];
             const FlatTriangle& tri = frame.geometry.triangles()[path.triangle];
             const Material& material = frame.scene.materials[tri.material];
@@ -444,7 +457,8 @@ private:
     }
 
     // Marks `sample` of rect (EarlyCull) where the still path covers it all the shutter: its
-    // exact spans there are [0, 1] and seen, and the build will make that interval.
+    // exact spans there are [0, 1] and seen. The fragment just added for it keeps the depth, so
+    // the build makes that interval without finding it again.
     static void coverByStillPath(const Frame& frame, const exposure::TriangleSegment& path, const raster::MovingTriangle& moving,
                                  const FlatTriangle& tri, std::uint32_t sample, TileScratch& scratch) {
         const glm::dvec2 ndc = scratch.sampleNdc[sample];
@@ -452,8 +466,10 @@ private:
         frame.exactSpans(path, moving, ndc, scratch.events);
         Interval interval;
         if (scratch.events.size() == 2 && scratch.events[0] == 0.0f && scratch.events[1] == 1.0f &&
-            intervalOf(path, moving, tri, ndc, 0.0f, 1.0f, interval))
+            intervalOf(path, moving, tri, ndc, 0.0f, 1.0f, interval)) {
             scratch.earlyCull.cover(sample, std::max(interval.depth0, interval.depth1));
+            scratch.fragments.back().stillDepth = interval.depth0;  // (depth1 is the same: the path is still)
+        }
     }
 
     // The pixels of rect, within a tile whose paths are `items`; false, with the image left
@@ -587,7 +603,11 @@ private:
         auto sameSurface = [&](std::uint32_t a, std::uint32_t b) {
             return a / std::uint32_t(segmentsPerTriangle) == b / std::uint32_t(segmentsPerTriangle) && isOpaqueSurface(a);
         };
-        for (std::size_t i = 0; i < numSamples; ++i) {
+        // The row's shutter window, found once a row (it is the same for the row's samples).
+        const std::size_t samplesPerRow = std::size_t(tileWidth) * std::size_t(spp);
+        ShutterWindow rowWindow;
+        for (std::size_t i = 0, nextRow = 0; i < numSamples; ++i) {
+            if (i == nextRow) rowWindow = sampleWindow(frame, pattern, rect, i), nextRow += samplesPerRow;
             std::span<Fragment> fragments(scratch.bySample.data() + runs[i], runs[i + 1] - runs[i]);
             if (!fragments.empty()) {
                 fragments = fragments.first(uniquePaths(fragments));
@@ -600,7 +620,7 @@ private:
                     std::sort(fragments.begin(), fragments.end(), [](const Fragment& a, const Fragment& b) { return a.path < b.path; });
                 }
                 const std::size_t first = scratch.built.size();
-                buildIntervals(frame, fragments, scratch.sampleNdc[i], sampleWindow(frame, pattern, rect, i), scratch, scratch.built);
+                buildIntervals(frame, fragments, scratch.sampleNdc[i], rowWindow, scratch, scratch.built);
                 if (isMerging) counters.mergedIntervals += motion_path::mergeAbuttingIntervals(scratch.built, first, scratch.knots, sameSurface);
                 if (scratch.built.size() - first > std::size_t(options.maxIntervals)) {
                     // Over budget: keep the nearest intervals.
@@ -655,7 +675,8 @@ private:
         scratch.visible.clear();
         scratch.visibleRuns.assign(numSamples + 1, 0);
         scratch.hasVisibleSpans.assign(numSamples, 0);
-        for (std::size_t i = 0; i < numSamples; ++i) {
+        for (std::size_t i = 0, nextRow = 0; i < numSamples; ++i) {
+            if (i == nextRow) rowWindow = sampleWindow(frame, pattern, rect, i), nextRow += samplesPerRow;
             const std::uint32_t begin = scratch.sortedRuns[i], end = scratch.sortedRuns[i + 1];
             scratch.visibleRuns[i + 1] = scratch.visibleRuns[i];
             if (end == begin) continue;
@@ -665,7 +686,7 @@ private:
                 // is shaded over the time it shows.
                 const std::size_t firstSpan = scratch.visible.size();
                 scratch.backgroundWeights[i] = motion_path::resolveOpaqueSpans(list, std::span(scratch.weights).subspan(begin, end - begin),
-                                                                               sampleWindow(frame, pattern, rect, i), scratch.visible);
+                                                                               rowWindow, scratch.visible);
                 for (std::size_t v = firstSpan; v < scratch.visible.size(); ++v) scratch.visible[v].interval += begin;
                 scratch.visibleRuns[i + 1] = std::uint32_t(scratch.visible.size());
                 scratch.hasVisibleSpans[i] = 1;
@@ -675,7 +696,7 @@ private:
                 motion_path::resolveWeights(std::span(scratch.sorted).subspan(begin, end - begin), options.maskBits,
                                             std::span(scratch.weights).subspan(begin, end - begin),
                                             options.exactWeights ? motion_path::OpaqueWeights::Exact : motion_path::OpaqueWeights::Slices,
-                                            sampleWindow(frame, pattern, rect, i));
+                                            rowWindow);
         }
         now = Clock::now();
         counters.resolveSeconds += std::chrono::duration<double>(now - start).count();
