@@ -31,18 +31,28 @@ void forEachPiece(std::span<const ExposureInterval> intervals, F&& f) {
         cuts = heapCuts.data(), covering = heapCovering.data();
     }
     std::size_t numCuts = 0;
-    cuts[numCuts++] = 0.0f, cuts[numCuts++] = 1.0f;
-    for (const ExposureInterval& i : intervals) cuts[numCuts++] = std::clamp(i.t0, 0.0f, 1.0f), cuts[numCuts++] = std::clamp(i.t1, 0.0f, 1.0f);
-    for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = i + 1; j < n; ++j) {
-            const ExposureInterval &a = intervals[i], &b = intervals[j];
-            const float lo = std::max(a.t0, b.t0), hi = std::min(a.t1, b.t1);
-            if (!(hi > lo)) continue;
-            const float dLo = a.depthAt(lo) - b.depthAt(lo), dHi = a.depthAt(hi) - b.depthAt(hi);
-            if ((dLo < 0.0f && dHi > 0.0f) || (dLo > 0.0f && dHi < 0.0f)) cuts[numCuts++] = lo + (hi - lo) * dLo / (dLo - dHi);
-        }
-    std::sort(cuts, cuts + numCuts);
-    numCuts = std::size_t(std::unique(cuts, cuts + numCuts) - cuts);
+    const float lone0 = n == 1 ? std::clamp(intervals[0].t0, 0.0f, 1.0f) : 0.0f, lone1 = n == 1 ? std::clamp(intervals[0].t1, 0.0f, 1.0f) : 0.0f;
+    if (n == 1 && lone0 < lone1) {
+        // A lone interval (most samples of a still scene: [0, 1]) crosses nothing: its ends are
+        // the only cuts, written in order, so nothing is sorted. (Empty or not a number: below.)
+        cuts[numCuts++] = 0.0f;
+        if (lone0 > 0.0f) cuts[numCuts++] = lone0;
+        if (lone1 < 1.0f) cuts[numCuts++] = lone1;
+        cuts[numCuts++] = 1.0f;
+    } else {
+        cuts[numCuts++] = 0.0f, cuts[numCuts++] = 1.0f;
+        for (const ExposureInterval& i : intervals) cuts[numCuts++] = std::clamp(i.t0, 0.0f, 1.0f), cuts[numCuts++] = std::clamp(i.t1, 0.0f, 1.0f);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = i + 1; j < n; ++j) {
+                const ExposureInterval &a = intervals[i], &b = intervals[j];
+                const float lo = std::max(a.t0, b.t0), hi = std::min(a.t1, b.t1);
+                if (!(hi > lo)) continue;
+                const float dLo = a.depthAt(lo) - b.depthAt(lo), dHi = a.depthAt(hi) - b.depthAt(hi);
+                if ((dLo < 0.0f && dHi > 0.0f) || (dLo > 0.0f && dHi < 0.0f)) cuts[numCuts++] = lo + (hi - lo) * dLo / (dLo - dHi);
+            }
+        std::sort(cuts, cuts + numCuts);
+        numCuts = std::size_t(std::unique(cuts, cuts + numCuts) - cuts);
+    }
     for (std::size_t c = 0; c + 1 < numCuts; ++c) {
         const float a = cuts[c], b = cuts[c + 1];
         std::size_t numCovering = 0;
@@ -101,20 +111,6 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
                     const ExactDepth* exactDepth, double* misorderedTime, double* overlapTime, std::vector<VisibleSpan>* visible) {
     std::fill(weights.begin(), weights.end(), 0.0f);
     float background = 0.0f;
-    if (intervals.size() == 1) {
-        // A lone interval (most samples of a still scene: [0, 1]): the pieces the sweep below
-        // would find, background before and after it, in its order of sums, without sorting
-        // cuts. Where it is empty or not a number, the sweep decides.
-        const float t0 = std::clamp(intervals[0].t0, 0.0f, 1.0f), t1 = std::clamp(intervals[0].t1, 0.0f, 1.0f);
-        if (t0 < t1) {
-            if (t0 > 0.0f) background += window.measure(0.0f, t0);
-            const float share = window.measure(t0, t1);
-            weights[0] += share;
-            if (visible && share > 0.0f) appendVisibleSpan(*visible, 0, t0, t1, share);
-            if (t1 < 1.0f) background += window.measure(t1, 1.0f);
-            return background;
-        }
-    }
     forEachPiece(intervals, [&](float a, float b, std::span<std::size_t> covering) {
         const float share = window.measure(a, b);
         if (covering.empty()) {
@@ -123,7 +119,7 @@ float resolveOpaque(std::span<const ExposureInterval> intervals, std::span<float
         }
         const float tm = 0.5f * (a + b);
         std::size_t nearest = covering[0];
-        for (std::size_t i : covering)
+        for (std::size_t i : covering.subspan(1))  // (the first against itself never wins)
             if (intervals[i].depthAt(tm) < intervals[nearest].depthAt(tm)) nearest = i;
         weights[nearest] += share;
         if (visible && share > 0.0f) appendVisibleSpan(*visible, std::uint32_t(nearest), a, b, share);

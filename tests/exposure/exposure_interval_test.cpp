@@ -135,8 +135,8 @@ TEST(Resolve, SharesAreTheRowsExposure) {
 }
 
 TEST(Resolve, ALoneIntervalTakesTheSharesTheSweepGivesIt) {
-    // A lone interval is resolved without the sweep; the same interval with a second one wholly
-    // behind it over the same times goes through the sweep, which cuts at the same times: the
+    // A lone interval's cuts are written in order, not sorted; the same interval with a second one
+    // wholly behind it over the same times takes the sorted cuts, at the same times: the
     // shares, the background and the visible span must be the same to the bit. Inside the
     // shutter, at its ends, reaching past them, under a curve and in a rolling row.
     const ShutterCurve triangle = ShutterCurve::parse("triangle");
