@@ -1,5 +1,7 @@
 #include "exposure/exposure_interval.h"
 
+#include "exposure/shutter_pieces.h"
+
 #include <glm/common.hpp>
 
 #include <algorithm>
@@ -8,61 +10,6 @@
 #include <limits>
 
 namespace streak::exposure {
-
-namespace {
-
-// The shutter cut at every interval end and wherever two intervals' depth lines cross inside
-// their common time, so that within a piece the depth order is fixed; f(a, b, covering) for
-// each piece [a, b] with the intervals covering it. A sample's list is short and its resolve
-// quick: up to kOnStack intervals the cuts and the covering stay off the heap (two allocations
-// were a tenth of an --aa 1 frame's resolve).
-template <class F>
-void forEachPiece(std::span<const ExposureInterval> intervals, F&& f) {
-    constexpr std::size_t kOnStack = 8, kCutsOnStack = 2 + 2 * kOnStack + kOnStack * (kOnStack - 1) / 2;
-    const std::size_t n = intervals.size();
-    std::array<float, kCutsOnStack> stackCuts;
-    std::array<std::size_t, kOnStack> stackCovering;
-    std::vector<float> heapCuts;
-    std::vector<std::size_t> heapCovering;
-    float* cuts = stackCuts.data();
-    std::size_t* covering = stackCovering.data();
-    if (n > kOnStack) {
-        heapCuts.resize(2 + 2 * n + n * (n - 1) / 2), heapCovering.resize(n);
-        cuts = heapCuts.data(), covering = heapCovering.data();
-    }
-    std::size_t numCuts = 0;
-    const float lone0 = n == 1 ? std::clamp(intervals[0].t0, 0.0f, 1.0f) : 0.0f, lone1 = n == 1 ? std::clamp(intervals[0].t1, 0.0f, 1.0f) : 0.0f;
-    if (n == 1 && lone0 < lone1) {
-        // A lone interval (most samples of a still scene: [0, 1]) crosses nothing: its ends are
-        // the only cuts, written in order, so nothing is sorted. (Empty or not a number: below.)
-        cuts[numCuts++] = 0.0f;
-        if (lone0 > 0.0f) cuts[numCuts++] = lone0;
-        if (lone1 < 1.0f) cuts[numCuts++] = lone1;
-        cuts[numCuts++] = 1.0f;
-    } else {
-        cuts[numCuts++] = 0.0f, cuts[numCuts++] = 1.0f;
-        for (const ExposureInterval& i : intervals) cuts[numCuts++] = std::clamp(i.t0, 0.0f, 1.0f), cuts[numCuts++] = std::clamp(i.t1, 0.0f, 1.0f);
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t j = i + 1; j < n; ++j) {
-                const ExposureInterval &a = intervals[i], &b = intervals[j];
-                const float lo = std::max(a.t0, b.t0), hi = std::min(a.t1, b.t1);
-                if (!(hi > lo)) continue;
-                const float dLo = a.depthAt(lo) - b.depthAt(lo), dHi = a.depthAt(hi) - b.depthAt(hi);
-                if ((dLo < 0.0f && dHi > 0.0f) || (dLo > 0.0f && dHi < 0.0f)) cuts[numCuts++] = lo + (hi - lo) * dLo / (dLo - dHi);
-            }
-        std::sort(cuts, cuts + numCuts);
-        numCuts = std::size_t(std::unique(cuts, cuts + numCuts) - cuts);
-    }
-    for (std::size_t c = 0; c + 1 < numCuts; ++c) {
-        const float a = cuts[c], b = cuts[c + 1];
-        std::size_t numCovering = 0;
-        for (std::size_t i = 0; i < n; ++i)
-            if (intervals[i].t0 <= a && intervals[i].t1 >= b) covering[numCovering++] = i;
-        f(a, b, std::span<std::size_t>(covering, numCovering));
-    }
-}
-
-}  // namespace
 
 float oracle(const ExposureInterval& a, const ExposureInterval& b, const OracleWeights& h) {
     const ExposureInterval& first = a.t0 <= b.t0 ? a : b;
