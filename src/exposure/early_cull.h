@@ -122,6 +122,25 @@ public:
     // would cost more than the cull saves.
     static constexpr float kShortestStretch = 1.0f / 16.0f;
 
+    // Whether a segment may cover a point sample over kShortestStretch of the shutter or more,
+    // and so give the cull something to keep (cover, coverStretch). Not where every point of
+    // its surface travels across the screen more than 1 / kShortestStretch times the
+    // triangle's size over the segment's share of the shutter: a sample then stays inside it
+    // for less than that share (a dense mesh's tiny triangles under a camera move). An estimate
+    // of the motion (exact for a translation), which only ever turns the cull off where it
+    // would keep nothing: images do not depend on the cull. Segments behind the eye, still ones,
+    // and ones that turn about a point of themselves (their corners' displacements surround
+    // none) may.
+    static bool mayCoverAStretch(const TriangleSegment& segment, const raster::Viewport& viewport);
+    // Per segment of `geometry`: the farthest view depth it may hide others from (its farthest
+    // corner's), where it may cover a stretch and is opaque; infinity elsewhere.
+    static LargeVector<float> occluderDepths(const SegmentedGeometry& geometry, const raster::Viewport& viewport);
+    // Whether the cull may hide anything among a tile's segments `items`: some segment lies
+    // wholly beyond what another may hide it from. Where none does (a tile of a dense mesh
+    // under a camera move, whose triangles sweep its samples in slivers), the tile is not
+    // ordered nearest first for the cull, nor its samples' records put back in order.
+    static bool mayHideAny(std::span<const std::uint32_t> items, std::span<const TriangleSegment> segments, std::span<const float> occluderDepths);
+
     // An opaque interval covers `sample` over the whole shutter, no farther than `farthest`.
     void cover(std::uint32_t sample, float farthest) {
         float& covered = m_farthest[sample];

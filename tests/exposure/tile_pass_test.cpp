@@ -15,16 +15,19 @@ namespace {
 TEST(SortRunsBySource, EachSamplesRecordsTakeTheirSourcesOrderKeepingOneSourcesOwn) {
     // Records of 50 samples from 12 sources, several per source and sample (a segment can
     // cover a sample in more than one span, in time order), shuffled as a nearest-first visit
-    // leaves them; the reference is the records stably sorted by sample, then source.
+    // leaves them; the reference is the records stably sorted by sample, then source. Every
+    // other round puts them on 3 samples from 60 sources: runs of a hundred or more, as a dense
+    // mesh under fast motion leaves them, which take the other sort.
     std::mt19937 rng(7);
     for (int round = 0; round < 20; ++round) {
         SCOPED_TRACE(round);
         std::vector<TileRecord> records;
-        const std::size_t numSamples = 50;
+        const bool isDense = round % 2 == 1;
+        const std::size_t numSamples = isDense ? 3 : 50;
         for (int i = 0; i < 400; ++i) {
             TileRecord r;
             r.sample = std::uint32_t(rng() % numSamples);
-            r.interval.source = std::uint32_t(rng() % 12);
+            r.interval.source = std::uint32_t(rng() % (isDense ? 60 : 12));
             r.interval.t0 = float(i);  // tells records apart: their order of finding
             records.push_back(r);
         }

@@ -163,6 +163,7 @@ private:
         std::optional<exposure::SegmentedGeometry> segmented;
         exposure::SpanShadingSettings spanShading;
         LargeVector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
+        LargeVector<float> occluderDepths;        ///< per triangle segment: EarlyCull::occluderDepths
         simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
@@ -175,7 +176,10 @@ private:
             return exposure::unseenSurface(segmented->flat().triangles()[segmented->segments()[segment].triangle], segmented->segments()[segment].nearness);
         }
 
-        void computeBounds() { bounds = segmented->screenBounds(viewport); }
+        void computeBounds() {
+            bounds = segmented->screenBounds(viewport);
+            occluderDepths = exposure::EarlyCull::occluderDepths(*segmented, viewport);
+        }
 
         // A span's colour at a site (its point and footprint), in the row's shutter window.
         ShadedColor shade(std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row,
@@ -238,12 +242,14 @@ private:
         // corner is not solved for it. It is
         // off where the resolve sees every interval (a budget to compress to, the depth-order
         // check, occlusion-cull=0), in adaptive sampling's first pass, whose unseen-segment rule
-        // counts intervals, and where no segment spans the shutter. The segments go nearest
-        // first, so that what hides others is mostly drawn before them; the resolve puts each
-        // sample's list back in the tile's order (sortRunsBySource), so the order changes
-        // nothing it sees.
+        // counts intervals, where no segment spans the shutter, and in a tile where no segment
+        // may hide another (EarlyCull::mayHideAny: a dense mesh's tiny triangles under a camera
+        // move), which then keeps its order. The segments go nearest first, so that what hides
+        // others is mostly drawn before them; the resolve puts each sample's list back in the
+        // tile's order (sortRunsBySource), so the order changes nothing it sees.
         const bool isCullingEarly = frame.options.earlyCull && frame.options.resolve.occlusionCull && frame.options.resolve.maxIntervals == 0 &&
-                                    !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->hasWholeShutterSegments();
+                                    !frame.options.checkDepthOrder && !frame.firstPass && frame.segmented->hasWholeShutterSegments() &&
+                                    exposure::EarlyCull::mayHideAny(items, segments, frame.occluderDepths);
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, segments);
         scratch.sortRunsBySource = isCullingEarly;
