@@ -98,14 +98,16 @@ inline bool isInsideShutter(std::span<const ExposureInterval> intervals) {
     return true;
 }
 
-// The sweep's lists, kept per thread so a sample's resolve allocates nothing once warm.
+// The sweep's lists, kept per thread so a sample's resolve allocates nothing once warm. Reached
+// by a call, so the sweep looks the thread's storage up once (a thread_local used in a loop is
+// looked up at every use in a shared library).
 struct SweepScratch {
     std::vector<std::uint32_t> byStart, byEnd, open;
     std::vector<float> cuts;
     std::vector<std::size_t> covering;
 };
 
-inline SweepScratch& sweepScratch() {
+[[gnu::noinline]] inline SweepScratch& sweepScratch() {
     thread_local SweepScratch scratch;
     return scratch;
 }

@@ -48,6 +48,26 @@ void clipKnots(Interval& i, std::span<const DepthKnot> knots) {
     for (auto it = begin; it != end; ++it) i.knotNear = std::min(i.knotNear, it->depth), i.knotFar = std::max(i.knotFar, it->depth);
 }
 
+// An interval's depth range and time span, packed for sortDepthTime's scan of pairs.
+struct Reach {
+    float near, far, t0, t1;
+};
+
+// sortDepthTime's lists, kept per thread (it runs once per pixel sample) and reached by a call:
+// a thread_local read in a loop is looked up again at every use in a shared library
+// (__tls_get_addr), which took a third of the scan of pairs.
+struct SortScratch {
+    std::vector<Reach> reach;
+    std::vector<std::uint32_t> order, byDepth;
+    std::vector<char> isPlaced;
+    std::vector<Interval> sorted;
+};
+
+[[gnu::noinline]] SortScratch& sortScratch() {
+    thread_local SortScratch scratch;
+    return scratch;
+}
+
 }  // namespace
 
 float depthAt(const Interval& interval, std::span<const DepthKnot> knots, float t) {
@@ -126,11 +146,20 @@ bool canStayBefore(const Interval& h, const Interval& k, std::span<const DepthKn
 void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCounters& counters, std::span<const DepthKnot> knots) {
     std::sort(intervals.begin(), intervals.end(), [](const Interval& a, const Interval& b) { return a.minDepth() < b.minDepth(); });
     // Split every crossing pair. Pieces of a segment cannot cross what the whole did not, and
-    // the inner loop runs over the growing list, so every pair is seen once it exists.
+    // the inner loop runs over the growing list, so every pair is seen once it exists. The scan
+    // reads each interval's depth range and time span packed (a dense sample's hundreds of
+    // intervals make it quadratic), and passes over pairs with disjoint ranges or no common
+    // time, which splitAtCrossing would refuse, before the copies.
+    SortScratch& scratch = sortScratch();
+    auto reachOf = [](const Interval& x) { return Reach{x.minDepth(), x.maxDepth(), x.t0, x.t1}; };
+    std::vector<Reach>& reach = scratch.reach;
+    reach.clear();
+    for (const Interval& x : intervals) reach.push_back(reachOf(x));
     for (std::size_t i = 0; i < intervals.size(); ++i) {
         for (std::size_t j = i + 1; j < intervals.size(); ++j) {
-            // Disjoint depth ranges cannot cross (a cheap test before the copies).
-            if (intervals[j].minDepth() > intervals[i].maxDepth() || intervals[i].minDepth() > intervals[j].maxDepth()) continue;
+            const Reach& r = reach[j];
+            const Reach& ri = reach[i];
+            if (r.near > ri.far || ri.near > r.far || !(r.t0 < ri.t1 && ri.t0 < r.t1)) continue;
             Interval aTail, bTail;
             Interval a = intervals[i], b = intervals[j];
             if (!splitAtCrossing(a, b, aTail, bTail, knots)) continue;
@@ -142,6 +171,8 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
             intervals[j] = b;
             intervals.push_back(aTail);
             intervals.push_back(bTail);
+            reach[i] = reachOf(a), reach[j] = reachOf(b);
+            reach.push_back(reachOf(aTail)), reach.push_back(reachOf(bTail));
             ++counters.splits;
         }
     }
@@ -157,10 +188,9 @@ void sortDepthTime(std::vector<Interval>& intervals, int maxIntervals, SortCount
     const bool isFinite = std::all_of(intervals.begin(), intervals.end(), [](const Interval& x) {
         return std::isfinite(x.depth0) && std::isfinite(x.depth1);
     });
-    // Per-thread scratch: this runs once per pixel sample.
-    thread_local std::vector<std::uint32_t> order, byDepth;
-    thread_local std::vector<char> isPlaced;
-    thread_local std::vector<Interval> sorted;
+    std::vector<std::uint32_t>&order = scratch.order, &byDepth = scratch.byDepth;
+    std::vector<char>& isPlaced = scratch.isPlaced;
+    std::vector<Interval>& sorted = scratch.sorted;
     order.resize(n), byDepth.resize(n);
     std::iota(order.begin(), order.end(), 0u);
     std::iota(byDepth.begin(), byDepth.end(), 0u);

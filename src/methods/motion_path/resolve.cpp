@@ -11,6 +11,13 @@ namespace streak::motion_path {
 
 namespace {
 
+// resolveOpaqueExact's union, kept per thread and reached by a call: a thread_local used in a
+// loop is looked up again at every use in a shared library (__tls_get_addr).
+[[gnu::noinline]] std::vector<std::pair<float, float>>& coveredSpans() {
+    thread_local std::vector<std::pair<float, float>> covered;
+    return covered;
+}
+
 float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<float> weights, const ShutterWindow& window) {
     const TimeMask full = TimeMask::full(numBits);
     const float scale = 1.0f / float(numBits);
@@ -29,7 +36,7 @@ float resolveOpaque(std::span<const Interval> sorted, int numBits, std::span<flo
 float resolveOpaqueExact(std::span<const Interval> sorted, std::span<float> weights, const ShutterWindow& window,
                          std::vector<exposure::VisibleSpan>* visible) {
     // The union of the spans so far, disjoint and in time order.
-    thread_local std::vector<std::pair<float, float>> covered;
+    std::vector<std::pair<float, float>>& covered = coveredSpans();
     covered.clear();
     float coveredLength = 0.0f;
     std::size_t i = 0;
