@@ -1,5 +1,7 @@
 #include "exposure/occlusion_cull.h"
 
+#include "util/sort_keys.h"
+
 #include <algorithm>
 #include <numeric>
 
@@ -34,15 +36,19 @@ bool isCovered(const std::vector<std::pair<float, float>>& spans, float t0, floa
 std::size_t cullHiddenIntervals(std::vector<ExposureInterval>& intervals, OcclusionScratch& scratch) {
     const std::size_t n = intervals.size();
     if (n < 2) return 0;
-    scratch.byNearest.resize(n);
-    std::iota(scratch.byNearest.begin(), scratch.byNearest.end(), std::size_t(0));
-    std::sort(scratch.byNearest.begin(), scratch.byNearest.end(),
-              [&](std::size_t a, std::size_t b) { return nearestDepth(intervals[a]) < nearestDepth(intervals[b]); });
-    scratch.byFarthest.clear();
-    for (std::size_t i = 0; i < n; ++i)
-        if (intervals[i].alpha >= 1.0f) scratch.byFarthest.push_back(i);
-    std::sort(scratch.byFarthest.begin(), scratch.byFarthest.end(),
-              [&](std::size_t a, std::size_t b) { return farthestDepth(intervals[a]) < farthestDepth(intervals[b]); });
+    // Both orders as sorted keys (sortKey: by depth, then index). Which of equal depths comes
+    // first changes nothing below: an interval is tested against the occluders wholly nearer
+    // than it, whatever their order.
+    auto sortedBy = [&](auto&& depthOf, auto&& isIncluded, std::vector<std::size_t>& order) {
+        scratch.keys.clear();
+        for (std::size_t i = 0; i < n; ++i)
+            if (isIncluded(intervals[i])) scratch.keys.push_back(sortKey(depthOf(intervals[i]), std::uint32_t(i)));
+        std::sort(scratch.keys.begin(), scratch.keys.end());
+        order.clear();
+        for (const std::uint64_t key : scratch.keys) order.push_back(indexOf(key));
+    };
+    sortedBy(nearestDepth, [](const ExposureInterval&) { return true; }, scratch.byNearest);
+    sortedBy(farthestDepth, [](const ExposureInterval& x) { return x.alpha >= 1.0f; }, scratch.byFarthest);
     // Sweep by nearest depth; the occluders of an interval are the opaque ones wholly nearer
     // (farthest depth below its nearest), added to the covered spans as the sweep deepens.
     scratch.covered.clear();

@@ -3,6 +3,7 @@
 #include "exposure/exposure_interval.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -10,6 +11,7 @@ namespace streak::exposure {
 
 struct OcclusionScratch {
     std::vector<std::size_t> byNearest, byFarthest;
+    std::vector<std::uint64_t> keys;
     std::vector<std::pair<float, float>> covered;  ///< disjoint time spans, by start
     std::vector<char> isHidden;
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "exposure/exposure_interval.h"
+#include "util/sort_keys.h"
 
 #include <algorithm>
 #include <array>
@@ -103,6 +104,7 @@ inline bool isInsideShutter(std::span<const ExposureInterval> intervals) {
 // looked up at every use in a shared library).
 struct SweepScratch {
     std::vector<std::uint32_t> byStart, byEnd, open;
+    std::vector<std::uint64_t> keys;
     std::vector<float> cuts;
     std::vector<std::size_t> covering;
 };
@@ -117,10 +119,17 @@ template <class F>
 void bySweep(std::span<const ExposureInterval> intervals, F&& f) {
     const std::uint32_t n = std::uint32_t(intervals.size());
     SweepScratch& s = sweepScratch();
-    s.byStart.resize(n), s.byEnd.resize(n);
-    std::iota(s.byStart.begin(), s.byStart.end(), 0u), std::iota(s.byEnd.begin(), s.byEnd.end(), 0u);
-    std::sort(s.byStart.begin(), s.byStart.end(), [&](std::uint32_t i, std::uint32_t j) { return intervals[i].t0 < intervals[j].t0; });
-    std::sort(s.byEnd.begin(), s.byEnd.end(), [&](std::uint32_t i, std::uint32_t j) { return intervals[i].t1 < intervals[j].t1; });
+    // The starts and ends in order, as sorted keys (sortKey: by time, then index; the order of
+    // equal times changes nothing below).
+    auto sortedBy = [&](float ExposureInterval::*time, std::vector<std::uint32_t>& order) {
+        s.keys.resize(n);
+        for (std::uint32_t i = 0; i < n; ++i) s.keys[i] = sortKey(intervals[i].*time, i);
+        std::sort(s.keys.begin(), s.keys.end());
+        order.resize(n);
+        for (std::uint32_t i = 0; i < n; ++i) order[i] = indexOf(s.keys[i]);
+    };
+    sortedBy(&ExposureInterval::t0, s.byStart);
+    sortedBy(&ExposureInterval::t1, s.byEnd);
 
     // The cuts: the shutter's ends, every interval's ends and the crossings. A pair that shares
     // time (max t0 < min t1) is tested when its later start enters: the earlier one is still
