@@ -22,6 +22,12 @@ float turnBetween(glm::vec3 a, glm::vec3 b) {
     return glm::length(a / la - b / lb);
 }
 
+// A bound on turnBetween(a, b) for a quarter of its cost: |a/|a| - b/|b|| <= 2 |a - b| / max(|a|, |b|).
+float turnBound(glm::vec3 a, glm::vec3 b) {
+    const float longest = std::max(glm::dot(a, a), glm::dot(b, b));
+    return longest > 0.0f ? 2.0f * std::sqrt(glm::dot(a - b, a - b) / longest) : 0.0f;
+}
+
 // The quadratic through (0, a), (1/2, m), (1, b), as coefficients: value(f) = c0 + f (c1 + f c2).
 template <class T>
 struct QuadraticThrough {
@@ -161,12 +167,19 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     int lightingTaps = 0;
     if (isLit && !isStill) {
         // Each half of the span turns by these angles; the reflected ray turns by twice the
-        // normal's turn, plus the view direction's.
-        auto toEye = [&](int i) { return scene.camera.positionAt(times[i]) - ends[i].position; };
-        const float normalTurn = std::max(turnBetween(ends[0].normal, ends[1].normal), turnBetween(ends[1].normal, ends[2].normal));
-        const float viewTurn = std::max(turnBetween(toEye(0), toEye(1)), turnBetween(toEye(1), toEye(2)));
-        lightingTaps = std::clamp(int(std::ceil(2.0f * (2.0f * normalTurn + viewTurn) / settings.maxTurnPerTap)), 1,
-                                  settings.maxLightingTaps);
+        // normal's turn, plus the view direction's. Up to 3 taps are all Simpson's three points
+        // (SpanLighting): where the turns' bounds keep the count there (a short span, as a dense
+        // mesh's slivers are), the turns themselves are not needed. (A margin below 3 covers the
+        // rounding of both.)
+        const std::array<glm::vec3, 3> toEye{scene.camera.positionAt(times[0]) - ends[0].position,
+                                             scene.camera.positionAt(times[1]) - ends[1].position,
+                                             scene.camera.positionAt(times[2]) - ends[2].position};
+        auto taps = [&](auto&& turn) {
+            const float normalTurn = std::max(turn(ends[0].normal, ends[1].normal), turn(ends[1].normal, ends[2].normal));
+            const float viewTurn = std::max(turn(toEye[0], toEye[1]), turn(toEye[1], toEye[2]));
+            return 2.0f * (2.0f * normalTurn + viewTurn) / settings.maxTurnPerTap;
+        };
+        lightingTaps = taps(turnBound) <= 2.99f ? 1 : std::clamp(int(std::ceil(taps(turnBetween))), 1, settings.maxLightingTaps);
     }
     std::optional<SpanLighting> lighting;
     if (isLit) lighting.emplace(scene, material, window, t0, t1, times, ends, lightingTaps, point, isStill);

@@ -79,6 +79,14 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
         m_area += 0.5 * cross(m_vertex[0], m_vertex[i], m_vertex[(i + 1) % m_count]);
     }
     m_yLo -= m_margin, m_yHi += m_margin;
+    // Each edge from its lower end, with its slope (rowRange runs a few times per sample row).
+    for (int i = 0; i < m_count; ++i) {
+        Edge& e = m_edges[std::size_t(i)];
+        e.lo = m_vertex[std::size_t(i)], e.hi = m_vertex[std::size_t((i + 1) % m_count)];
+        if (e.lo.y > e.hi.y) std::swap(e.lo, e.hi);
+        e.isLevel = e.lo.y == e.hi.y;
+        e.slope = e.isLevel ? 0.0 : (e.hi.x - e.lo.x) / (e.hi.y - e.lo.y);
+    }
     return true;
 }
 
@@ -90,16 +98,15 @@ bool SweptHull::rowRange(double y, double& xLo, double& xHi) const {
     const double bandLo = y - m_margin, bandHi = y + m_margin;
     xLo = std::numeric_limits<double>::infinity(), xHi = -xLo;
     for (int i = 0; i < m_count; ++i) {
-        glm::dvec2 a = m_vertex[i], b = m_vertex[(i + 1) % m_count];
-        if (a.y > b.y) std::swap(a, b);
+        const Edge& e = m_edges[std::size_t(i)];
+        const glm::dvec2 &a = e.lo, &b = e.hi;
         if (b.y < bandLo || a.y > bandHi) continue;
-        if (a.y == b.y) {
+        if (e.isLevel) {
             xLo = std::min({xLo, a.x, b.x}), xHi = std::max({xHi, a.x, b.x});
             continue;
         }
         const double yA = std::max(a.y, bandLo), yB = std::min(b.y, bandHi);
-        const double slope = (b.x - a.x) / (b.y - a.y);
-        const double xA = a.x + (yA - a.y) * slope, xB = a.x + (yB - a.y) * slope;
+        const double xA = a.x + (yA - a.y) * e.slope, xB = a.x + (yB - a.y) * e.slope;
         xLo = std::min({xLo, xA, xB}), xHi = std::max({xHi, xA, xB});
     }
     if (!(xLo <= xHi)) return false;

@@ -42,7 +42,13 @@ public:
     int numVertices() const { return m_count; }
 
 private:
+    struct Edge {
+        glm::dvec2 lo{0.0}, hi{0.0};  ///< its ends, the lower first
+        double slope = 0.0;           ///< dx / dy (0 when level)
+        bool isLevel = false;
+    };
     std::array<glm::dvec2, 6> m_vertex{};  ///< counter-clockwise
+    std::array<Edge, 6> m_edges{};         ///< m_vertex[i] to m_vertex[i + 1]
     int m_count = 0;
     double m_margin = 0.0;
     double m_area = 0.0;
