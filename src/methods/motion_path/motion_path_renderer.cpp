@@ -257,7 +257,10 @@ private:
 
         // Paths are binned by their screen boxes and built into faces tile by tile, so memory
         // stays one box per path however many triangles the scene has.
-        void generate() { bounds = segmented.screenBounds(viewport); }
+        void generate() {
+            bounds = segmented.screenBounds(viewport);
+            occluderDepths = exposure::EarlyCull::occluderDepths(segmented, viewport);
+        }
 
         // The exact time spans in which the sample lies inside the path's triangle, appended to
         // `events` as start/end shutter times.
@@ -298,6 +301,7 @@ private:
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         exposure::SpanShadingSettings spanShading;
         LargeVector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
+        LargeVector<float> occluderDepths;                ///< per path: EarlyCull::occluderDepths
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
     };
 
@@ -500,9 +504,11 @@ private:
         // pixel is so covered): the resolve would give its intervals no share. The build puts
         // each sample's fragments in path order again (uniquePaths), so the order changes
         // nothing after. It is off in adaptive sampling's first pass (its unseen-path rule counts
-        // intervals), without exact opaque weights or the sort, and where no path spans the shutter.
+        // intervals), without exact opaque weights or the sort, where no path spans the shutter,
+        // and in a tile where no path may hide another (EarlyCull::mayHideAny: a dense mesh's
+        // tiny triangles under a camera move), which then keeps its order.
         const bool isCullingEarly = options.earlyCull && options.exactWeights && options.sortIntervals && !frame.firstPass &&
-                                    frame.segmented.hasWholeShutterSegments();
+                                    frame.segmented.hasWholeShutterSegments() && exposure::EarlyCull::mayHideAny(items, frame.paths, frame.occluderDepths);
         exposure::EarlyCull& earlyCull = scratch.earlyCull;
         if (isCullingEarly) items = earlyCull.begin(numSamples, spp, tileWidth, items, frame.paths);
         for (std::size_t k = 0; k < items.size(); ++k) {
