@@ -1,5 +1,7 @@
 #include "exposure/early_cull.h"
 
+#include "raster/screen_triangle.h"
+
 #include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
 
@@ -34,12 +36,10 @@ double distanceToTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::d
 
 bool EarlyCull::mayCoverAStretch(const TriangleSegment& segment, const raster::Viewport& viewport) {
     if (segment.isStill || !segment.isInFront()) return true;
-    auto pixel = [&](const glm::vec4& c) {
-        return glm::dvec2((double(c.x) / c.w + 1.0) * 0.5 * viewport.width, (1.0 - double(c.y) / c.w) * 0.5 * viewport.height);
-    };
     std::array<glm::dvec2, 3> p0, p1, travel;
     double size = 0.0;
-    for (int i = 0; i < 3; ++i) p0[i] = pixel(segment.clip0[i]), p1[i] = pixel(segment.clip1[i]), travel[i] = p1[i] - p0[i];
+    for (int i = 0; i < 3; ++i)
+        p0[i] = raster::rasterFromClip(segment.clip0[i], viewport), p1[i] = raster::rasterFromClip(segment.clip1[i], viewport), travel[i] = p1[i] - p0[i];
     for (int i = 0; i < 3; ++i) size = std::max({size, glm::length(p0[(i + 1) % 3] - p0[i]), glm::length(p1[(i + 1) % 3] - p1[i])});
     // Each point of the surface moves by a mix of its corners' displacements, so by at least
     // their triangle's distance from no motion.

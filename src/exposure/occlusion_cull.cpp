@@ -3,7 +3,6 @@
 #include "util/sort_keys.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace streak::exposure {
 
@@ -43,9 +42,7 @@ std::size_t cullHiddenIntervals(std::vector<ExposureInterval>& intervals, Occlus
         scratch.keys.clear();
         for (std::size_t i = 0; i < n; ++i)
             if (isIncluded(intervals[i])) scratch.keys.push_back(sortKey(depthOf(intervals[i]), std::uint32_t(i)));
-        std::sort(scratch.keys.begin(), scratch.keys.end());
-        order.clear();
-        for (const std::uint64_t key : scratch.keys) order.push_back(indexOf(key));
+        sortedIndices(scratch.keys, order);
     };
     sortedBy(nearestDepth, [](const ExposureInterval&) { return true; }, scratch.byNearest);
     sortedBy(farthestDepth, [](const ExposureInterval& x) { return x.alpha >= 1.0f; }, scratch.byFarthest);

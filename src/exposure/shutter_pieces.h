@@ -5,10 +5,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <numeric>
 #include <span>
 #include <vector>
 
@@ -124,9 +122,7 @@ void bySweep(std::span<const ExposureInterval> intervals, F&& f) {
     auto sortedBy = [&](float ExposureInterval::*time, std::vector<std::uint32_t>& order) {
         s.keys.resize(n);
         for (std::uint32_t i = 0; i < n; ++i) s.keys[i] = sortKey(intervals[i].*time, i);
-        std::sort(s.keys.begin(), s.keys.end());
-        order.resize(n);
-        for (std::uint32_t i = 0; i < n; ++i) order[i] = indexOf(s.keys[i]);
+        sortedIndices(s.keys, order);
     };
     sortedBy(&ExposureInterval::t0, s.byStart);
     sortedBy(&ExposureInterval::t1, s.byEnd);

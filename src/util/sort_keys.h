@@ -1,7 +1,10 @@
 #pragma once
 
+#include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace streak {
 
@@ -19,5 +22,13 @@ inline std::uint64_t sortKey(float value, std::uint32_t index) { return std::uin
 
 // The index a sortKey holds.
 inline std::uint32_t indexOf(std::uint64_t key) { return std::uint32_t(key); }
+
+// Sorts `keys` (sortKeys) and writes their indices, in order, to `order`.
+template <class Index>
+void sortedIndices(std::vector<std::uint64_t>& keys, std::vector<Index>& order) {
+    std::sort(keys.begin(), keys.end());
+    order.resize(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) order[i] = Index(indexOf(keys[i]));
+}
 
 }  // namespace streak
