@@ -133,17 +133,19 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
     }
     const bool isDataPass = mode == ShadingMode::Normal || isVectorPass(mode);
     const bool withFootprint = !isUntextured && !isDataPass;
-    std::array<SurfacePoint, 3> ends;
     // A still point is the same at every time: its middle serves as both ends.
     const bool isStill = point.isStill(t0, t1);
     if (isStill && !isDataPass && !point.hasBoxFootprint()) {
         // Nothing the point is shaded from moves: the span is one instant, shaded as a
         // rasterizer shades a sample (the unswept lookup below is a GPU's either way), at a
         // rasterizer's cost. A box counts the triangle's texels and keeps its own filter; a data
-        // pass takes its alpha from the unlit shading below, with its footprint.
-        if (!point.at(times[1], withFootprint, ends[1])) return {glm::vec3(0.0f), 0.0f};
-        return shadeSurface(scene, mode, ends[1], scene.camera.positionAt(times[1]));
+        // pass takes its alpha from the unlit shading below, with its footprint. (Before the
+        // three ends below are made: a still frame shades every sample here.)
+        SurfacePoint middle;
+        if (!point.at(times[1], withFootprint, middle)) return {glm::vec3(0.0f), 0.0f};
+        return shadeSurface(scene, mode, middle, scene.camera.positionAt(times[1]));
     }
+    std::array<SurfacePoint, 3> ends;
     if (isStill) {
         if (!point.at(times[1], withFootprint, ends[1])) return {glm::vec3(0.0f), 0.0f};
         ends[0] = ends[2] = ends[1];

@@ -47,7 +47,8 @@ void TriangleSurfacePoint::makeUvRatio() const {
 
 bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) const {
     const TriangleSegment& segment = select(t);
-    const double u = segment.localTime(t);
+    // (A still segment is the same at every u.)
+    const double u = segment.isStill ? 0.0 : segment.localTime(t);
     raster::HomogeneousSample s;
     glm::dvec3 right, down;
     if (withFootprint) {

@@ -110,8 +110,10 @@ private:
                     RootCaseCounts* rootCases) const;
     bool isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const;
     static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
-    glm::dvec3 corner(int i, double u) const { return m_corner[i] + u * m_delta[i]; }
-    glm::dvec3 edgeVector(int e, double u) const { return (m_a[e] * u + m_b[e]) * u + m_c[e]; }
+    // (A still triangle's are its constants: with zero motion terms the sums below are exactly
+    // them, and the shading of a still frame asks for them at every sample.)
+    glm::dvec3 corner(int i, double u) const { return m_isStill ? m_corner[i] : m_corner[i] + u * m_delta[i]; }
+    glm::dvec3 edgeVector(int e, double u) const { return m_isStill ? m_c[e] : (m_a[e] * u + m_b[e]) * u + m_c[e]; }
 
     std::array<glm::dvec3, 3> m_a, m_b, m_c;        ///< edge e: (a u^2 + b u + c) . p
     std::array<glm::dvec3, 3> m_termBound;          ///< |a| + |b| + |c|: edge e's terms over u in [0, 1] are at most this

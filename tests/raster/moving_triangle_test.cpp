@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace streak::raster {
@@ -352,6 +353,45 @@ TEST(MovingTriangleStill, TakesTheRasterizersPathWithTheMovingPathsResults) {
     std::array<glm::vec4, 3> open = atW1({0, 0}, {1, 0}, {0, 1}), close = open;
     close[2].x = std::nextafter(close[2].x, 1.0f);
     EXPECT_FALSE(MovingTriangle(open, close).isStill());
+}
+
+TEST(MovingTriangleStill, SamplesAreThePlainHomogeneousEvaluationAtEveryTime) {
+    // A still triangle's barycentrics, depth and facing (sample, and the centre and neighbours
+    // of sampleWithNeighbours, which the shading of every still span takes) are the plain
+    // homogeneous evaluation of its corners (evaluateHomogeneousXyw: what a rasterizer
+    // computes) bit for bit, whatever time is asked: with no motion, nothing depends on u.
+    Rng rng(47);
+    int valid = 0;
+    for (int i = 0; i < 300; ++i) {
+        auto randomCorner = [&] { return glm::vec2(rng.uniform(-1, 1), rng.uniform(-1, 1)); };
+        std::array<glm::vec4, 3> corners = atW1(randomCorner(), randomCorner(), randomCorner());
+        for (glm::vec4& c : corners) c *= rng.uniform(0.05f, 3.0f);  // corners at other depths
+        if (i % 9 == 0) corners[2] = corners[0] + (corners[1] - corners[0]) * 0.5f;  // degenerate: in a line
+        const MovingTriangle still(corners, corners);
+        ASSERT_TRUE(still.isStill());
+        const std::array<glm::dvec3, 3> xyw{glm::dvec3(corners[0].x, corners[0].y, corners[0].w), glm::dvec3(corners[1].x, corners[1].y, corners[1].w),
+                                            glm::dvec3(corners[2].x, corners[2].y, corners[2].w)};
+        for (int k = 0; k < 10; ++k) {
+            const glm::dvec2 p(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+            const std::array<glm::dvec2, 2> offsets{glm::dvec2(rng.uniform(0, 0.01), 0.0), glm::dvec2(0.0, -rng.uniform(0, 0.01))};
+            const double u = k % 3 == 0 ? 0.0 : k % 3 == 1 ? 1.0 : rng.uniform(0, 1);
+            HomogeneousSample centre;
+            std::array<HomogeneousSample, 2> neighbours;
+            still.sampleWithNeighbours<2>(u, p, offsets, centre, neighbours);
+            const std::array<std::pair<HomogeneousSample, glm::dvec2>, 4> cases{
+                std::pair{still.sample(u, p), p}, std::pair{centre, p}, std::pair{neighbours[0], p + offsets[0]}, std::pair{neighbours[1], p + offsets[1]}};
+            for (const auto& [got, at] : cases) {
+                const HomogeneousSample want = evaluateHomogeneousXyw(xyw, at);
+                ASSERT_EQ(got.isValid, want.isValid) << "triangle " << i << " point " << k;
+                EXPECT_EQ(got.isFrontFacing, want.isFrontFacing);
+                if (!want.isValid) continue;
+                ++valid;
+                EXPECT_EQ(got.bary, want.bary) << "triangle " << i << " point " << k << " u " << u;
+                EXPECT_EQ(got.viewDepth, want.viewDepth);
+            }
+        }
+    }
+    EXPECT_GT(valid, 9000);
 }
 
 }  // namespace streak::raster
