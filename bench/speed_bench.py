@@ -21,6 +21,13 @@ Section dense: issue 28's dense camera move (MetalRoughSpheresNoTextures, 1,040,
 the camera travelling a quarter of the frame without turning) at 240x135 --aa 2: wall, peak
 memory and phases of analytic and motion-path, with --baseline the build before beside them.
 
+Section quality: the dense camera move at equal quality (issue 28: "faster than embree at the
+same foreground PSNR against accumulation-1024 of that move"), at --dense-size (240x135) --aa 2:
+accumulation with 1024 shutter times is the reference; analytic and motion-path, then embree at
+--embree-ladder rays per sample and accumulation at --accumulation-ladder times, each one run:
+render time, peak memory, and foreground PSNR against the reference and against analytic's image
+(the exact one: a sampled method's error is then its own, not the reference's too).
+
 Section budget: the dense camera move at 240x135 and 480x270 with motion-path and analytic, at
 the default --memory-budget and at each of --budgets (MB, default 1000): wall, peak memory, what
 was resident when the tiles began, the share per thread, the tiles halved and the pixels cut,
@@ -43,7 +50,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,budget,models,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,quality,budget,models,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--dense-size 240x135] [--embree-ladder 8,...,1024] [--accumulation-ladder 64,256] [--plot docs]
 """
 import argparse
 import glob
@@ -210,6 +217,36 @@ def dense(args, tmp):
     print()
 
 
+def foreground_psnr(binary, a, b):
+    """The foreground PSNR line of `streak compare a b`, as a float (inf where equal)."""
+    out = subprocess.run([binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
+    line = next(l for l in out.split("\n") if l.startswith("foreground PSNR:"))
+    return float(line.split(":")[1].split()[0])
+
+
+def quality(args, tmp):
+    width, height = (int(v) for v in args.dense_size.split("x"))
+    case_args = [SPHERES, *DENSE_CAMERAS, "--width", str(width), "--height", str(height), "--aa", "2"]
+    print(f"### The dense camera move at equal quality, {width}x{height} --aa 2 (one run each)\n")
+    reference = os.path.join(tmp, "reference.exr")
+    start = time.monotonic()
+    _, peak = run(args.streak, case_args, ["-m", "accumulation", "--samples", "1024"], reference, os.path.join(tmp, "s.json"))
+    print(f"Reference: accumulation, 1024 shutter times, {time.monotonic() - start:.0f} s, {peak:.0f} MiB.\n")
+    rows = [("analytic", "", ["-m", "analytic"]), ("motion-path", "", ["-m", "motion-path"])]
+    rows += [("embree", s, ["-m", "embree", "--samples", s]) for s in args.embree_ladder.split(",") if s]
+    rows += [("accumulation", s, ["-m", "accumulation", "--samples", s]) for s in args.accumulation_ladder.split(",") if s]
+    print("| method | rays or times per sample | render s | peak MiB | fg PSNR against the reference | fg PSNR against analytic |")
+    print("|---|---:|---:|---:|---:|---:|")
+    exact = os.path.join(tmp, "analytic.exr")
+    for label, samples, method in rows:
+        out = os.path.join(tmp, f"{label}{samples}.exr")
+        stats, peak = run(args.streak, case_args, method, out, os.path.join(tmp, "s.json"))
+        against_exact = "—" if label == "analytic" else f"{foreground_psnr(args.streak, exact, out):.1f}"
+        print(f"| {label} | {samples or 'exact'} | {stats['time_ms']['render'] / 1000:.2f} | {peak:.0f} | "
+              f"{foreground_psnr(args.streak, reference, out):.1f} | {against_exact} |", flush=True)
+    print()
+
+
 def budget(args, tmp):
     print("### The memory budget on the dense camera move (one run each)\n")
     print("| case | method | --memory-budget MB | wall s | peak MiB | resident at the tiles MiB | share per thread MiB | tiles halved | pixels cut | image against the default's |")
@@ -325,10 +362,13 @@ def main():
     parser.add_argument("--sections", default="profile,static,threads,memory,resolution")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--budgets", default="1000", help="section budget: the --memory-budget values (MB) beside the default")
+    parser.add_argument("--dense-size", default="240x135", help="section quality: the dense move's image size")
+    parser.add_argument("--embree-ladder", default="8,32,64,128,256,512,1024", help="section quality: embree's rays per sample")
+    parser.add_argument("--accumulation-ladder", default="64,256", help="section quality: accumulation's shutter times")
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "budget": budget, "models": models, "threads": threads, "memory": memory,
+    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "quality": quality, "budget": budget, "models": models, "threads": threads, "memory": memory,
                 "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):
