@@ -20,11 +20,8 @@ double cross(const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
 
 }  // namespace
 
-bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double extraMargin) {
-    m_count = 0;
-    std::array<glm::dvec2, 6> points;
-    double wProduct = 1.0;
-    for (int i = 0; i < 3; ++i) {
+bool SweptHull::projectCorners(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, std::array<glm::dvec2, 6>& points) {
+    for (int i = 0; i < 3; ++i)
         for (int end = 0; end < 2; ++end) {
             const glm::vec4& c = end == 0 ? open[i] : close[i];
             if (!(c.w > 0.0f)) return false;
@@ -32,8 +29,23 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
             point = glm::dvec2(double(c.x), double(c.y)) / double(c.w);
             if (!std::isfinite(point.x) || !std::isfinite(point.y)) return false;
         }
-        wProduct *= double(std::max(open[i].w, close[i].w));
-    }
+    return true;
+}
+
+bool SweptHull::buildAround(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double margin) {
+    m_count = 0;
+    std::array<glm::dvec2, 6> points;
+    if (!projectCorners(open, close, points)) return false;
+    m_margin = margin;
+    return setHull(points);
+}
+
+bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double extraMargin) {
+    m_count = 0;
+    std::array<glm::dvec2, 6> points;
+    if (!projectCorners(open, close, points)) return false;
+    double wProduct = 1.0;
+    for (int i = 0; i < 3; ++i) wProduct *= double(std::max(open[i].w, close[i].w));
     // The margin needs the sharpest corner the triangle has at any u, not only at its ends: a
     // corner can pass close to the opposite edge in between. At corner i, sin(theta) =
     // 2 A / (|a| |b|). Twice the NDC area is det(u) / (w0 w1 w2)(u): at least the least
@@ -64,10 +76,13 @@ bool SweptHull::build(const std::array<glm::vec4, 3>& open, const std::array<glm
     const double reach = 4.0 * kOnEdgeTolerance;
     if (!(sine * kMaxMargin > reach)) return false;
     m_margin = reach / sine + 1e-12 + extraMargin;
+    return setHull(points);
+}
 
+bool SweptHull::setHull(const std::array<glm::dvec2, 6>& points) {
     const ConvexHull hull = convexHull(points);
     m_count = hull.count;
-    if (m_count < 3) {  // not reached: both end poses have area
+    if (m_count < 3) {  // six points on a line (build's have area: only buildAround's can)
         m_count = 0;
         return false;
     }

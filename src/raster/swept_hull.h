@@ -32,6 +32,12 @@ public:
     // or the margin would exceed kMaxMargin. extraMargin (NDC) widens it further: by how far
     // the given corners may be from the true ones (SweptPieces rounds a piece's ends to float).
     bool build(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double extraMargin = 0.0);
+    // The hull of the six projected end corners widened by `margin` (NDC), whatever the triangle
+    // does in between: it holds the triangle at every u even where it turns over, though not the
+    // on-edge tolerance's reach along the line it collapses onto (SweptPieces). Returns false,
+    // leaving no hull, when a corner is not in front of the eye at an end or the six lie on a
+    // line.
+    bool buildAround(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, double margin);
 
     // The NDC x range [xLo, xHi] of the widened hull on the sample row at height y. Returns
     // false when the row misses it.
@@ -42,6 +48,12 @@ public:
     int numVertices() const { return m_count; }
 
 private:
+    // The six projected end corners (open's, then close's); false where one is not in front of
+    // the eye or not finite.
+    static bool projectCorners(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close, std::array<glm::dvec2, 6>& points);
+    // The hull of `points` widened by m_margin, set already; false (no hull) where they lie on a line.
+    bool setHull(const std::array<glm::dvec2, 6>& points);
+
     struct Edge {
         glm::dvec2 lo{0.0}, hi{0.0};  ///< its ends, the lower first
         double slope = 0.0;           ///< dx / dy (0 when level)

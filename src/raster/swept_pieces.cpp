@@ -35,7 +35,10 @@ bool SweptPieces::build(const std::array<glm::vec4, 3>& open, const std::array<g
         // An inner end rounded to float moves a corner's NDC by a few float epsilons of its size,
         // the end poses' hull by as much: the hull's margin takes eight of them.
         const double rounding = 8.0 * double(std::numeric_limits<float>::epsilon()) * std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y), 1.0});
-        m_hasHull[std::size_t(k)] = m_hull[std::size_t(k)].build(from, to, rounding);
+        // A piece where the triangle turns over (or is too sharp for build's margin): the hull
+        // of its six corners still holds it, widened as its box would be.
+        m_turns[std::size_t(k)] = !m_hull[std::size_t(k)].build(from, to, rounding);
+        m_hasHull[std::size_t(k)] = !m_turns[std::size_t(k)] || m_hull[std::size_t(k)].buildAround(from, to, kBoxMargin + rounding);
         if (m_hasHull[std::size_t(k)]) {
             m_area += m_hull[std::size_t(k)].area();
         } else {
@@ -63,6 +66,12 @@ bool SweptPieces::rowRange(double y, double& xLo, double& xHi) const {
     return xLo <= xHi;
 }
 
-int SweptPieces::numHulls() const { return int(std::count(m_hasHull.begin(), m_hasHull.end(), true)); }
+int SweptPieces::numHulls() const {
+    int count = 0;
+    for (int k = 0; k < kPieces; ++k) count += m_hasHull[std::size_t(k)] && !m_turns[std::size_t(k)];
+    return count;
+}
+
+int SweptPieces::numTurning() const { return int(std::count(m_turns.begin(), m_turns.end(), true)); }
 
 }  // namespace streak::raster

@@ -35,9 +35,11 @@ double distanceTo(const std::array<glm::dvec2, 3>& t, const glm::dvec2& p) {
 
 // A small triangle translating diagonally (as in SweptHull's band test) while its corner 2
 // crosses edge 0-1 at u = 0.4: no hull holds the whole segment, the pieces' hulls hold three
-// quarters of it and piece 1 ([0.25, 0.5], where it turns over) its box. A row in piece 0's
-// reach gets the band's width, one in piece 1's the box's.
-TEST(SweptPieces, BoxesOnlyThePieceWhereTheTriangleTurnsOver) {
+// quarters of it and piece 1 ([0.25, 0.5], where it turns over) the hull of its six corners. A
+// row in piece 0's reach gets the band's width, and so does one in piece 1's (its box, which
+// such a piece took before, is 0.26 wide there). A triangle whose corners lie on a line while
+// it moves along it has six corners on a line: its pieces take their boxes.
+TEST(SweptPieces, HullsThePieceWhereTheTriangleTurnsOverAroundItsCorners) {
     const std::array<glm::vec4, 3> open{glm::vec4(-0.5f, -0.5f, 0, 1), glm::vec4(-0.49f, -0.5f, 0, 1), glm::vec4(-0.5f, -0.49f, 0, 1)};
     std::array<glm::vec4, 3> close = open;
     for (glm::vec4& c : close) c += glm::vec4(1, 1, 0, 0);
@@ -47,6 +49,7 @@ TEST(SweptPieces, BoxesOnlyThePieceWhereTheTriangleTurnsOver) {
     SweptPieces pieces;
     ASSERT_TRUE(pieces.build(open, close));
     EXPECT_EQ(pieces.numHulls(), 3);
+    EXPECT_EQ(pieces.numTurning(), 1);
     double xLo = 0.0, xHi = 0.0;
     // y = -0.4 is reached in piece 0 only (it covers heights -0.5 .. -0.24): the band there is
     // about the triangle's width around x = y.
@@ -54,12 +57,36 @@ TEST(SweptPieces, BoxesOnlyThePieceWhereTheTriangleTurnsOver) {
     EXPECT_LT(xHi - xLo, 0.05);
     EXPECT_LT(xLo, -0.4);
     EXPECT_GT(xHi, -0.41);
-    // y = -0.1 is inside piece 1's box only: x from -0.25 to the corners' furthest at u = 0.5,
-    // widened by kBoxMargin.
+    // y = -0.1 is in piece 1's reach only. Its six corners' hull crosses it between the hull
+    // edge from corner 2 at u = 0.25 to corner 0 at u = 0.5 ((-0.25, -0.24625) to (0, 0)) and
+    // corner 1's path ((-0.24, -0.25) to (0.01, 0)). rowRange takes each edge over the rows
+    // within the margin (kBoxMargin, and about 1e-6 for the pieces' float ends) and widens by
+    // it again.
     ASSERT_TRUE(pieces.rowRange(-0.1, xLo, xHi));
-    EXPECT_NEAR(xLo, -0.25 - SweptPieces::kBoxMargin, 1e-6);
-    EXPECT_NEAR(xHi, 0.01 - SweptPieces::kBoxMargin * -1.0, 1e-6);
+    const double m = SweptPieces::kBoxMargin, leftSlope = 0.25 / 0.24625;
+    EXPECT_NEAR(xLo, -0.25 + (-0.1 + 0.24625) * leftSlope - m * (1.0 + leftSlope), 5e-6);
+    EXPECT_NEAR(xHi, -0.09 + 2.0 * m, 5e-6);
+    EXPECT_LT(xHi - xLo, 0.013);
+    // The triangle at u = 0.4 (corner 2 on edge 0-1, all three on y = x - 0.1 + ...) is inside.
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec2 p = glm::dvec2(open[std::size_t(k)]) + 0.4 * (glm::dvec2(close[std::size_t(k)]) - glm::dvec2(open[std::size_t(k)]));
+        ASSERT_TRUE(pieces.rowRange(p.y, xLo, xHi));
+        EXPECT_LE(xLo, p.x);
+        EXPECT_GE(xHi, p.x);
+    }
     EXPECT_FALSE(pieces.rowRange(0.6, xLo, xHi));
+    // Corners on a line, moving along it: no piece has an area to hull, so each takes its box.
+    const std::array<glm::vec4, 3> flat{glm::vec4(-0.5f, -0.5f, 0, 1), glm::vec4(-0.45f, -0.45f, 0, 1), glm::vec4(-0.4f, -0.4f, 0, 1)};
+    std::array<glm::vec4, 3> flatClose = flat;
+    for (glm::vec4& c : flatClose) c += glm::vec4(0.4f, 0.4f, 0, 0);
+    SweptPieces line;
+    ASSERT_TRUE(line.build(flat, flatClose));
+    EXPECT_EQ(line.numHulls(), 0);
+    EXPECT_EQ(line.numTurning(), 4);
+    // y = -0.42 is in piece 0's box only (corners from -0.5 to -0.3): its whole width.
+    ASSERT_TRUE(line.rowRange(-0.42, xLo, xHi));
+    EXPECT_NEAR(xLo, -0.5 - SweptPieces::kBoxMargin, 1e-6);
+    EXPECT_NEAR(xHi, -0.3 + SweptPieces::kBoxMargin, 1e-6);
     std::array<glm::vec4, 3> behind = close;
     behind[0].w = -1.0f;
     EXPECT_FALSE(pieces.build(open, behind));
