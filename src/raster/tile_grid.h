@@ -7,6 +7,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cassert>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -81,19 +84,67 @@ void TileGrid::bin(std::size_t count, BoundsOf&& bounds) {
     }
 }
 
+// The pixels k = 0 .. last of a sample row where one edge holds, value + step k >= 0 (value:
+// the edge function plus its bias at the row's first pixel; step: its change a pixel), as
+// [first, last] narrowed in place; false when none is left. Exact in integers: a quotient of
+// doubles (the values are below 2^53) estimates each end, and the edge itself settles it.
+inline bool narrowToEdge(std::int64_t value, std::int64_t step, std::int64_t& first, std::int64_t& last) {
+    if (step == 0) return value >= 0;
+    if (step > 0) {
+        if (value >= 0) return true;  // from the first pixel on
+        const double estimate = std::ceil(double(-value) / double(step));
+        if (!(estimate <= double(last) + 1.0)) return false;  // beyond the row (the estimate is off by at most one)
+        std::int64_t k = std::int64_t(estimate);
+        while (k > 0 && value + step * (k - 1) >= 0) --k;
+        while (value + step * k < 0) ++k;
+        first = std::max(first, k);
+    } else {
+        if (value < 0) return false;  // and only falls from there
+        const double estimate = std::floor(double(value) / double(-step));
+        if (estimate <= double(last)) {  // (beyond: the true end is at least estimate - 1 >= last)
+            std::int64_t k = std::int64_t(estimate);
+            while (value + step * (k + 1) >= 0) ++k;
+            while (k >= 0 && value + step * k < 0) --k;
+            last = std::min(last, k);
+        }
+    }
+    return first <= last;
+}
+
 // Calls onSample(px, py, sampleIndex, edgeValues) for every sample of `pattern` inside `tri`
 // within the pixel rectangle `region` (a tile). The one scan loop of streak: every CPU method
-// rasterizes through it, so the fill rule and edge setup exist once.
+// rasterizes through it, so the fill rule and edge setup exist once. A row kScanSpanMinWidth
+// pixels wide or more finds its covered pixels from the edges first (narrowToEdge), as a
+// rasterizer's span walk does, and visits only those: the same samples and edge values as
+// testing every pixel, without the test at each. (A thin diagonal face across a tile tested
+// 0.45% of its box's samples inside: motion-path's dense camera move scanned 10.7 G samples for
+// 48 M fragments.) Narrower rows test each pixel, which costs less than finding their span.
+inline constexpr int kScanSpanMinWidth = 8;
+
 template <class OnSample>
 void scanTriangle(const ScreenTriangle& tri, const PixelBounds& region, const SamplePattern& pattern, OnSample&& onSample) {
     const int x0 = std::max(region.x0, tri.bounds.x0), x1 = std::min(region.x1, tri.bounds.x1);
     const int y0 = std::max(region.y0, tri.bounds.y0), y1 = std::min(region.y1, tri.bounds.y1);
     if (x0 > x1 || y0 > y1) return;
     const std::int64_t stepX[3] = {tri.a[0] * kSubpixelScale, tri.a[1] * kSubpixelScale, tri.a[2] * kSubpixelScale};
+    const bool isWide = x1 - x0 + 1 >= kScanSpanMinWidth;
     for (int py = y0; py <= y1; ++py) {
         for (int s = 0; s < pattern.count(); ++s) {
             const glm::i64vec2 offset = pattern.offsets[s];
             EdgeValues e = tri.edgesAt(std::int64_t(x0) * kSubpixelScale + offset.x, std::int64_t(py) * kSubpixelScale + offset.y);
+            if (isWide) {
+                std::int64_t first = 0, last = x1 - x0;
+                bool isAny = true;
+                for (int i = 0; i < 3 && isAny; ++i) isAny = narrowToEdge(e[i] + tri.bias[i], stepX[i], first, last);
+                if (!isAny) continue;
+                for (int i = 0; i < 3; ++i) e[i] += stepX[i] * first;
+                for (std::int64_t k = first; k <= last; ++k) {
+                    assert(tri.isInside(e));
+                    onSample(x0 + int(k), py, s, e);
+                    e[0] += stepX[0], e[1] += stepX[1], e[2] += stepX[2];
+                }
+                continue;
+            }
             for (int px = x0; px <= x1; ++px) {
                 if (tri.isInside(e)) onSample(px, py, s, e);
                 e[0] += stepX[0], e[1] += stepX[1], e[2] += stepX[2];

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace streak::raster {
@@ -76,6 +77,84 @@ TEST(FillRule, TopLeftOwnership) {
     const std::vector<int> counts = coverageCounts(vp, SamplePattern::grid(1), tris);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) EXPECT_EQ(counts[y * 8 + x], (x >= 2 && x < 6 && y >= 2 && y < 6) ? 1 : 0) << x << "," << y;
+}
+
+TEST(ScanTriangle, RowSpansVisitTheSamplesAndEdgeValuesOfTestingEveryPixel) {
+    // scanTriangle finds a wide row's covered pixels from the edges (narrowToEdge) instead of
+    // testing each: it must call back with exactly the samples, in the same order, and the same
+    // edge values as testing every pixel of the row does. Random triangles of every size and
+    // shape (long slivers at every angle, ones with level or upright edges, ones whose corners
+    // sit on sample positions), exact and conservative (makeConservative's bias), under regions
+    // that clip them, at 1, 4 and 9 samples a pixel.
+    const Viewport vp{200, 150};
+    Rng rng(64);
+    struct Visit {
+        int px, py, s;
+        EdgeValues e;
+        bool operator==(const Visit&) const = default;
+    };
+    int wide = 0, visits = 0;
+    for (int i = 0; i < 3000; ++i) {
+        auto point = [&] {
+            glm::vec2 p(rng.uniform(-20.0f, 220.0f), rng.uniform(-20.0f, 170.0f));
+            if (i % 5 == 0) p = glm::floor(p) + 0.5f;  // on a pixel centre
+            return p;
+        };
+        std::array<glm::vec2, 3> c{point(), point(), point()};
+        if (i % 3 == 1) c[1] = c[0] + glm::vec2(rng.uniform(-150.0f, 150.0f), rng.uniform(-3.0f, 3.0f)), c[2] = c[0] + glm::vec2(rng.uniform(-2.0f, 2.0f), rng.uniform(-2.0f, 2.0f));
+        if (i % 7 == 2) c[1].y = c[0].y;                  // a level edge
+        if (i % 11 == 3) c[2].x = c[0].x;                 // an upright one
+        ScreenTriangle tri;
+        if (!setupScreenTriangle({clipAt(vp, c[0].x, c[0].y), clipAt(vp, c[1].x, c[1].y), clipAt(vp, c[2].x, c[2].y)}, vp, tri)) continue;
+        if (i % 2 == 1) makeConservative(tri, vp);
+        const int x0 = int(rng.uniform(0.0f, 150.0f)), y0 = int(rng.uniform(0.0f, 100.0f));
+        const PixelBounds region = i % 4 == 0 ? PixelBounds{0, 0, vp.width - 1, vp.height - 1}
+                                              : PixelBounds{x0, y0, x0 + int(rng.uniform(0.0f, 60.0f)), y0 + int(rng.uniform(0.0f, 40.0f))};
+        const SamplePattern pattern = SamplePattern::rooks(1 + i % 3);
+        std::vector<Visit> got, want;
+        scanTriangle(tri, region, pattern, [&](int px, int py, int s, const EdgeValues& e) { got.push_back({px, py, s, e}); });
+        // Every pixel tested, as the loop did before row spans.
+        const int rx0 = std::max(region.x0, tri.bounds.x0), rx1 = std::min(region.x1, tri.bounds.x1);
+        const int ry0 = std::max(region.y0, tri.bounds.y0), ry1 = std::min(region.y1, tri.bounds.y1);
+        for (int py = ry0; py <= ry1; ++py)
+            for (int s = 0; s < pattern.count(); ++s)
+                for (int px = rx0; px <= rx1; ++px) {
+                    const EdgeValues e = tri.edgesAt(std::int64_t(px) * kSubpixelScale + pattern.offsets[std::size_t(s)].x,
+                                                     std::int64_t(py) * kSubpixelScale + pattern.offsets[std::size_t(s)].y);
+                    if (tri.isInside(e)) want.push_back({px, py, s, e});
+                }
+        wide += rx1 - rx0 + 1 >= kScanSpanMinWidth;
+        visits += int(want.size());
+        ASSERT_EQ(got.size(), want.size()) << "triangle " << i;
+        ASSERT_TRUE(got == want) << "triangle " << i;
+    }
+    EXPECT_GT(wide, 1000);
+    EXPECT_GT(visits, 100000);
+}
+
+TEST(ScanTriangle, NarrowToEdgeFindsTheExactEnds) {
+    // Against counting pixel by pixel, at values and steps near the ends' rounding (values that
+    // are exact multiples of the step, one either side of them, and ones past 2^40).
+    Rng rng(7);
+    for (int i = 0; i < 200000; ++i) {
+        const std::int64_t step = (i % 2 ? 1 : -1) * (1 + std::int64_t(rng.next() % (i % 3 ? 1000u : 1u << 30)));
+        const std::int64_t last = std::int64_t(rng.next() % 300);
+        std::int64_t value = std::int64_t(rng.next() % 2000000) - 1000000;
+        if (i % 5 == 0) value = -step * std::int64_t(rng.next() % 400) + std::int64_t(rng.next() % 3) - 1;
+        if (i % 7 == 0) value *= std::int64_t(1) << 20;
+        std::int64_t first = 0, end = last;
+        const bool isAny = narrowToEdge(value, step, first, end);
+        std::int64_t wantFirst = -1, wantLast = -1;
+        for (std::int64_t k = 0; k <= last; ++k)
+            if (value + step * k >= 0) {
+                if (wantFirst < 0) wantFirst = k;
+                wantLast = k;
+            }
+        ASSERT_EQ(isAny, wantFirst >= 0) << value << " " << step << " " << last;
+        if (!isAny) continue;
+        ASSERT_EQ(first, wantFirst) << value << " " << step << " " << last;
+        ASSERT_EQ(end, wantLast) << value << " " << step << " " << last;
+    }
 }
 
 TEST(ScreenTriangle, OrientationAndPerspectiveBarycentrics) {
