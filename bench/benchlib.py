@@ -40,6 +40,14 @@ class Streak:
         return float(re.search(r"PSNR: (\S+) dB", out).group(1))
 
 
+def compare(streak, a, b):
+    """(PSNR, foreground PSNR, foreground pixels) from `streak compare`."""
+    out = subprocess.run([streak, "compare", a, b], check=True, capture_output=True, text=True).stdout
+    psnr = float(re.search(r"^PSNR: (\S+) dB", out, re.M).group(1))
+    m = re.search(r"^foreground PSNR: (\S+) dB \((\d+) pixels\)", out, re.M)
+    return psnr, float(m.group(1)), int(m.group(2))
+
+
 LADDER = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 384, 512, 768, 1024, 1536, 2048]
 
 

@@ -72,14 +72,6 @@ HD_MODELS = "CesiumMan,Fox,ToyCar,AnimatedCube,BoxAnimated,cubes,fence"
 STREAK_FLAGS = ["--aa", "8", "--shading", "unlit", "--background", "0,0,0"]
 
 
-def compare(streak, a, b):
-    """(PSNR, foreground PSNR, foreground pixels) from `streak compare`."""
-    out = subprocess.run([streak, "compare", a, b], check=True, capture_output=True, text=True).stdout
-    psnr = float(re.search(r"^PSNR: (\S+) dB", out, re.M).group(1))
-    m = re.search(r"^foreground PSNR: (\S+) dB \((\d+) pixels\)", out, re.M)
-    return psnr, float(m.group(1)), int(m.group(2))
-
-
 def cpu_methods(streak):
     out = subprocess.run([streak, "methods"], check=True, capture_output=True, text=True).stdout
     return [line.split()[0] for line in out.splitlines() if line.strip() and not line.split()[0].endswith("-gl")]
@@ -233,7 +225,7 @@ def time_to_quality(args):
         reference = renders[args.spp]["path"]
         cycles_rungs = []  # (spp, fg, seconds), climbed until every target is reached
         for spp in ladder_spp:
-            _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
+            _, fg, _ = benchlib.compare(args.streak, renders[spp]["path"], reference)
             cycles_rungs.append((spp, fg, renders[spp]["seconds"]))
             if fg >= max(targets):
                 break
@@ -245,7 +237,7 @@ def time_to_quality(args):
             rungs = []  # (aa, fg, seconds of one render), climbed until every target is reached
             for aa in aa_ladder:
                 ms, _ = streak.render(scene, method, image, size=size, args=rung_flags(flags, aa, options), repeats=1)
-                _, fg, _ = compare(args.streak, image, reference)
+                _, fg, _ = benchlib.compare(args.streak, image, reference)
                 rungs.append((aa, fg, ms / 1000))
                 if fg >= max(targets):
                     break
@@ -307,14 +299,14 @@ def main():
         reference = renders[args.spp]["path"]
         ladder = []
         for spp in ladder_spp:
-            _, fg, _ = compare(args.streak, renders[spp]["path"], reference)
+            _, fg, _ = benchlib.compare(args.streak, renders[spp]["path"], reference)
             ladder.append((spp, renders[spp]["seconds"], fg))
         ladders.append((name, ladder, renders[args.spp]["seconds"]))
         for spec in methods:
             method, options, stem = method_spec(spec)
             image = os.path.join(out, f"{stem}.exr")
             ms, _ = streak.render(scene, method, image, size=size, args=scene_flags(flags) + streak_flags + options)
-            psnr, fg, pixels = compare(args.streak, image, reference)
+            psnr, fg, pixels = benchlib.compare(args.streak, image, reference)
             equal = cycles_equal(ladder, args.spp, renders[args.spp]["seconds"], fg)
             print(f"| {name} | {spec} | {db(psnr)} | {db(fg)} ({pixels} px) | {ms / 1000:.2f} s | {equal} |", flush=True)
     if ladder_spp:

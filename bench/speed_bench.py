@@ -62,7 +62,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import machine, pyplot  # noqa: E402
+from benchlib import compare, machine, pyplot  # noqa: E402
 
 SHARED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "scenes")
 TOYCAR = os.path.join(SHARED, "ToyCar", "glTF", "ToyCar.gltf")
@@ -217,13 +217,6 @@ def dense(args, tmp):
     print()
 
 
-def foreground_psnr(binary, a, b):
-    """The foreground PSNR line of `streak compare a b`, as a float (inf where equal)."""
-    out = subprocess.run([binary, "compare", a, b], check=True, capture_output=True, text=True).stdout
-    line = next(l for l in out.split("\n") if l.startswith("foreground PSNR:"))
-    return float(line.split(":")[1].split()[0])
-
-
 def quality(args, tmp):
     width, height = (int(v) for v in args.dense_size.split("x"))
     case_args = [SPHERES, *DENSE_CAMERAS, "--width", str(width), "--height", str(height), "--aa", "2"]
@@ -241,9 +234,9 @@ def quality(args, tmp):
     for label, samples, method in rows:
         out = os.path.join(tmp, f"{label}{samples}.exr")
         stats, peak = run(args.streak, case_args, method, out, os.path.join(tmp, "s.json"))
-        against_exact = "—" if label == "analytic" else f"{foreground_psnr(args.streak, exact, out):.1f}"
+        against_exact = "—" if label == "analytic" else f"{compare(args.streak, exact, out)[1]:.1f}"
         print(f"| {label} | {samples or 'exact'} | {stats['time_ms']['render'] / 1000:.2f} | {peak:.0f} | "
-              f"{foreground_psnr(args.streak, reference, out):.1f} | {against_exact} |", flush=True)
+              f"{compare(args.streak, reference, out)[1]:.1f} | {against_exact} |", flush=True)
     print()
 
 

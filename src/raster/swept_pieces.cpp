@@ -66,12 +66,8 @@ bool SweptPieces::rowRange(double y, double& xLo, double& xHi) const {
     return xLo <= xHi;
 }
 
-int SweptPieces::numHulls() const {
-    int count = 0;
-    for (int k = 0; k < kPieces; ++k) count += m_hasHull[std::size_t(k)] && !m_turns[std::size_t(k)];
-    return count;
-}
-
 int SweptPieces::numTurning() const { return int(std::count(m_turns.begin(), m_turns.end(), true)); }
+
+int SweptPieces::numHulls() const { return kPieces - numTurning(); }  // (a piece that keeps its orientation has build's hull)
 
 }  // namespace streak::raster
