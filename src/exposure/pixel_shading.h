@@ -3,6 +3,7 @@
 #include "exposure/shading_site.h"
 #include "exposure/visible_pieces.h"
 #include "raster/sample_pattern.h"
+#include "scene/material.h"
 #include "scene/shading.h"
 #include "util/options.h"
 #include "util/stats.h"
@@ -12,7 +13,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -66,14 +69,39 @@ struct PixelShadingOptions {
 };
 PixelShadingOptions pixelShadingOptions(OptionMap& options, const std::string& method);
 
+// How the pieces of one triangle in a pixel share their shading (PixelShading::add).
+enum class Sharing : std::uint8_t {
+    // Its colour varies within a pixel by no more than its lighting and vertex colours do
+    // (untextured): one shading per pixel.
+    Pixel,
+    // Textured and moving: one shading per cell, its texture filtered over the cell's samples
+    // swept along the motion (a box).
+    Cells,
+    // Textured and still all the shutter, under a still camera: one shading per pixel, lit once,
+    // its texture looked up at each of its samples' own points (ShadingSite::samples), as each
+    // would alone. The samples' lookups are the pixel's box filter of a still texture, which a
+    // box over a cell only approximates, and the point, its footprint and its lighting, the cost
+    // of a still sample's shading beside its lookup, are found once.
+    StillTextured,
+};
+
+// How a triangle of `material` shares, where isStill says it is still all the shutter under a
+// still camera (and its method looks up a still point's texture at its samples).
+inline Sharing sharingOf(const Material& material, bool isStill) {
+    if (material.baseColorTexture < 0) return Sharing::Pixel;
+    return isStill ? Sharing::StillTextured : Sharing::Cells;
+}
+
 // What shading the visible pieces did, summed over pixels (for --stats).
 struct PixelShadingCounters {
     std::int64_t pixels = 0;            ///< pixels with any visible opaque piece
     std::int64_t pieces = 0;            ///< visible opaque pieces of samples (abutting ones merged)
     std::int64_t shadedSpans = 0;       ///< the shadings they took
     std::int64_t visibleTriangles = 0;  ///< per pixel, the distinct triangles of its pieces, summed
+    std::int64_t stillSampleLookups = 0;  ///< texture lookups of shared still shadings (Sharing::StillTextured), one a sample
     void add(const PixelShadingCounters& o) {
         pixels += o.pixels, pieces += o.pieces, shadedSpans += o.shadedSpans, visibleTriangles += o.visibleTriangles;
+        stillSampleLookups += o.stillSampleLookups;
     }
 };
 
@@ -103,14 +131,21 @@ public:
     // NDC, shaded in cellsPerAxis x cellsPerAxis cells (ShadingRate::Pixel): each cell's
     // samples share their shadings.
     void begin(const raster::SamplePattern& pattern, const glm::dvec2& pixelNdc, int cellsPerAxis);
-    // Adds the visible pieces of the pixel's sample `sample` at `ndc`. isTextured(triangle) says
-    // whether a triangle's colour varies within a pixel by more than its lighting and vertex
-    // colours do: only such triangles are shaded in cells; the rest once per pixel.
-    template <class IsTextured>
-    void add(int sample, const glm::dvec2& ndc, std::span<const VisiblePiece> pieces, IsTextured&& isTextured) {
+    // Adds the visible pieces of the pixel's sample `sample` at `ndc`. sharingOf(triangle) says
+    // how a triangle's pieces share (Sharing), or, as a bool, whether it is textured (Cells) or
+    // not (Pixel).
+    template <class SharingOf>
+    void add(int sample, const glm::dvec2& ndc, std::span<const VisiblePiece> pieces, SharingOf&& sharingOf) {
         m_ndc[std::size_t(sample)] = ndc;
-        for (const VisiblePiece& piece : pieces)
-            m_pending.push_back({piece, std::uint32_t(sample), isTextured(piece.triangle) ? m_cell[std::size_t(sample)] : 0u});
+        for (const VisiblePiece& piece : pieces) {
+            Sharing sharing;
+            if constexpr (std::is_same_v<std::decay_t<decltype(sharingOf(piece.triangle))>, bool>)
+                sharing = sharingOf(piece.triangle) ? Sharing::Cells : Sharing::Pixel;
+            else
+                sharing = sharingOf(piece.triangle);
+            m_pending.push_back({piece, std::uint32_t(sample), sharing == Sharing::Cells ? m_cell[std::size_t(sample)] : 0u,
+                                 sharing == Sharing::StillTextured});
+        }
     }
 
     // Shades the pixel's pieces with shade(triangle, t0, t1, ShadingSite) -> ShadedColor and adds
@@ -143,9 +178,29 @@ public:
         std::uint32_t lastTriangle = ~0u;
         for (const Cluster& cluster : m_clusters) {
             const Pending& single = m_pending[m_order[cluster.begin]];
-            const glm::vec3 color = isCellOneSample && cluster.end - cluster.begin == 1
-                                        ? shade(single.piece.triangle, single.piece.t0, single.piece.t1, sampleSite(m_ndc[single.sample], m_samplesPerAxis)).color
-                                        : shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter}).color;
+            const bool isSingle = cluster.end - cluster.begin == 1;
+            glm::vec3 color;
+            if ((isCellOneSample || cluster.isStillTextured) && isSingle) {
+                color = shade(single.piece.triangle, single.piece.t0, single.piece.t1, sampleSite(m_ndc[single.sample], m_samplesPerAxis)).color;
+            } else if (cluster.isStillTextured) {
+                // Lit at the sample nearest the samples' middle (on the triangle, as a centre of
+                // their bounds need not be), looked up at each.
+                m_siteSamples.clear();
+                glm::dvec2 site = m_ndc[single.sample];
+                double nearest = std::numeric_limits<double>::infinity();
+                for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
+                    const Pending& p = m_pending[m_order[k]];
+                    const glm::dvec2 ndc = m_ndc[p.sample], off = (ndc - cluster.ndc) / m_pixelNdc;
+                    m_siteSamples.push_back({ndc, p.piece.weight});
+                    if (const double d = off.x * off.x + off.y * off.y; d < nearest) nearest = d, site = ndc;
+                }
+                ShadingSite shared = sampleSite(site, m_samplesPerAxis);
+                shared.samples = m_siteSamples;
+                color = shade(cluster.triangle, cluster.t0, cluster.t1, shared).color;
+                counters.stillSampleLookups += std::int64_t(m_siteSamples.size());
+            } else {
+                color = shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter}).color;
+            }
             for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
                 const Pending& p = m_pending[m_order[k]];
                 colors[p.sample] += color * p.piece.weight;
@@ -161,12 +216,14 @@ private:
     struct Pending {
         VisiblePiece piece;
         std::uint32_t sample = 0, cell = 0;
+        bool isStillTextured = false;  ///< Sharing::StillTextured
     };
     // Pieces m_order[begin..end) of one triangle, shaded as one span.
     struct Cluster {
         std::uint32_t triangle = 0, cell = 0, begin = 0, end = 0;
         float t0 = 0.0f, t1 = 0.0f;
         glm::dvec2 ndc{0.0}, footprintPixels{1.0};
+        bool isStillTextured = false;
     };
 
     void formClusters(bool isBoxCentred);
@@ -180,6 +237,7 @@ private:
     std::vector<Pending> m_pending;
     std::vector<std::uint32_t> m_order;
     std::vector<Cluster> m_clusters;
+    std::vector<SiteSample> m_siteSamples;  ///< a still textured cluster's samples, while it is shaded
 };
 
 }  // namespace streak::exposure

@@ -157,6 +157,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
         backFacing += localBackFacing;
     });
     m_numBackFacing = backFacing.load();
+    m_isCameraStatic = scene.camera.isStatic();
     m_hasWholeShutterSegments = n == 1 || std::any_of(m_segments.begin(), m_segments.end(), [](const TriangleSegment& s) { return s.t0 == 0.0f && s.t1 == 1.0f; });
 }
 

@@ -112,6 +112,12 @@ public:
     // a moving camera), world corners and normals (TriangleSegment::isStill, set for every
     // segment at construction).
     bool isStill(const TriangleSegment& segment) const;
+    // Whether a triangle is one still segment over the whole shutter and the camera does not
+    // move either: every point of it shades the same at every time.
+    bool isStillAllShutter(std::uint32_t triangle) const {
+        const TriangleSegment& s = segment(triangle, 0);
+        return s.isStill && s.t0 == 0.0f && s.t1 == 1.0f && m_isCameraStatic;
+    }
     std::int64_t numBackFacing() const { return m_numBackFacing; }
     // The closed surfaces whose back faces were dropped (cullClosed), and their triangles.
     std::int64_t numClosedSurfaces() const { return m_numClosedSurfaces; }
@@ -133,6 +139,7 @@ private:
     std::int64_t m_numMergedAway = 0;
     std::int64_t m_numClosedSurfaces = 0, m_numClosedTriangles = 0;
     bool m_hasWholeShutterSegments = false;
+    bool m_isCameraStatic = false;
 
     void mergeLinearRuns(const raster::Viewport& viewport, double tolerancePixels);
     void cullClosedBackFaces(const Camera& camera);

@@ -6,8 +6,16 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <span>
 
 namespace streak::exposure {
+
+// One sample of a shared shading whose texture is looked up at each of its samples
+// (ShadingSite::samples): where it lies and how much of its exposure it gives the shading.
+struct SiteSample {
+    glm::dvec2 ndc{0.0};
+    float weight = 0.0f;
+};
 
 // Where a span is shaded, for the surface points of span shading (TriangleSurfacePoint,
 // CurvedSurfacePoint): the point under it, the texture footprint around it, and whether the
@@ -25,6 +33,14 @@ struct ShadingSite {
     // The footprint is a region of the screen whose samples share the shading, so its texels are
     // averaged alike (a box, MovingSurfacePoint::hasBoxFootprint), not a sample's bell.
     bool boxFootprint = false;
+    // A still textured triangle's shading shared by the samples of a pixel that see it
+    // (PixelShading, Sharing::StillTextured): the point at `ndc` (one of them) is lit once, and
+    // its texture is looked up at each sample's own point with `ndc`'s footprint of one sample
+    // spacing, the lookups weighted by the samples' exposures. Nothing still moves between the
+    // samples' times, so this is per-sample shading with the lighting and footprint taken once;
+    // unlit it is per-sample shading's colour but for the footprint's change across the pixel.
+    // Empty everywhere else.
+    std::span<const SiteSample> samples{};
 };
 
 // Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.

@@ -114,6 +114,27 @@ void recordSpanShadingSettings(RenderStats& stats, const SpanShadingSettings& se
     stats.setInfo("texture_filter", settings.textureFilter == SpanTextureFilter::Swept ? "swept" : "taps");
 }
 
+namespace {
+
+// A still textured point shared by several samples (ShadingSite::samples): the mean of its
+// shadings at each sample's own point with the middle's footprint, weighted by their exposures.
+// Nothing moves, so each is what that sample shades alone but for the footprint.
+ShadedColor shadeStillSamples(const Scene& scene, ShadingMode mode, const SurfacePoint& middle, std::span<const SiteSample> samples,
+                              const MovingSurfacePoint& point, const glm::vec3& eye) {
+    ShadedColor sum{glm::vec3(0.0f), 0.0f};
+    float weight = 0.0f;
+    for (const SiteSample& sample : samples) {
+        SurfacePoint p;
+        if (!point.atSample(sample.ndc, middle, p)) continue;
+        const ShadedColor c = shadeSurface(scene, mode, p, eye);
+        sum.color += sample.weight * c.color, sum.alpha += sample.weight * c.alpha, weight += sample.weight;
+    }
+    if (!(weight > 0.0f)) return shadeSurface(scene, mode, middle, eye);
+    return {sum.color / weight, sum.alpha / weight};
+}
+
+}  // namespace
+
 ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float t1, const MovingSurfacePoint& point,
                           const SpanShadingSettings& settings) {
     const ShutterWindow& window = settings.window;
@@ -143,7 +164,9 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         // three ends below are made: a still frame shades every sample here.)
         SurfacePoint middle;
         if (!point.at(times[1], withFootprint, middle)) return {glm::vec3(0.0f), 0.0f};
-        return shadeSurface(scene, mode, middle, scene.camera.positionAt(times[1]));
+        const std::span<const SiteSample> samples = point.sharedSamples();
+        if (samples.empty() || !withFootprint) return shadeSurface(scene, mode, middle, scene.camera.positionAt(times[1]));
+        return shadeStillSamples(scene, mode, middle, samples, point, scene.camera.positionAt(times[1]));
     }
     std::array<SurfacePoint, 3> ends;
     if (isStill) {

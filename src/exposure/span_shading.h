@@ -1,5 +1,6 @@
 #pragma once
 
+#include "exposure/shading_site.h"
 #include "scene/shading.h"
 #include "scene/shutter.h"
 #include "util/options.h"
@@ -51,6 +52,13 @@ public:
     // uv and footprint, and the eye): one instant then shades the whole span. False where the
     // method does not know.
     virtual bool isStill(float /*t0*/, float /*t1*/) const { return false; }
+
+    // The samples a still point's shading shades each at its own point (ShadingSite::samples),
+    // and the still surface's point under one of them, `middle`'s texture footprint taken (a
+    // still triangle's footprint barely changes across a pixel, and finding it is most of a
+    // still point's cost): empty, and false, where the point is shaded at its own place alone.
+    virtual std::span<const SiteSample> sharedSamples() const { return {}; }
+    virtual bool atSample(const glm::dvec2& /*ndc*/, const SurfacePoint& /*middle*/, SurfacePoint& /*out*/) const { return false; }
 
     // The material of every point of the surface, or -1 where the method does not say (then
     // at() tells it). Knowing it first lets an untextured material skip the texture footprint,

@@ -413,16 +413,19 @@ inline void sortRunsBySource(std::span<const std::uint32_t> runs, std::vector<Ti
 // (their search began at intervalStart, and is timed up to their grouping): groups them by
 // sample, resolves every sample exactly (resolveSample, compressing to the budget) and shades
 // what shows (resolveTile: per sample, or per pixel as options.shading says). The method
-// supplies triangleOf(source) and shade(triangle, t0, t1, ShadingSite, pixel row) ->
-// ShadedColor; exactDepth, when given, measures misordering. The tile's pixels go to `image`,
+// supplies triangleOf(source), shade(triangle, t0, t1, ShadingSite, pixel row) ->
+// ShadedColor, and isStill(triangle): true where the triangle is still all the shutter under a
+// still camera and shade() looks up a still point's texture at its site's samples
+// (ShadingSite::samples), so that its textured pieces share a pixel's shading
+// (Sharing::StillTextured); exactDepth, when given, measures misordering. The tile's pixels go to `image`,
 // and their passes, when asked for, to `passes`; a first pass of adaptive sampling tells
 // `firstPass` the surfaces each pixel showed. scratch.sampleNdc holds the tile's samples
 // (tileSampleNdc of rect and pattern), as the search for intervals took them.
-template <class Cache, class Counters, class TriangleOf, class Shade>
+template <class Cache, class Counters, class TriangleOf, class Shade, class IsStill>
 void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, const Scene& scene,
                       const FlatTriangles& triangles, int width, int height, const ExactResolveOptions& options,
                       std::chrono::steady_clock::time_point intervalStart, ExactTileScratch<Cache, Counters>& scratch,
-                      Image& image, TriangleOf&& triangleOf, Shade&& shade, const ExactDepthOfSource* exactDepth = nullptr,
+                      Image& image, TriangleOf&& triangleOf, Shade&& shade, IsStill&& isStill, const ExactDepthOfSource* exactDepth = nullptr,
                       PassFrame* passes = nullptr, FirstPassGeometry* firstPass = nullptr) {
     const std::size_t numSamples = std::size_t(rect.x1 - rect.x0 + 1) * std::size_t(rect.y1 - rect.y0 + 1) * std::size_t(pattern.count());
     raster::groupBySample(std::span<const TileRecord>(scratch.records), numSamples, scratch.runs, scratch.bySample);
@@ -433,7 +436,7 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
     resolveTile(rect, pattern, width, height, scene.background, std::span<const glm::dvec2>(scratch.sampleNdc), std::span<const TileRecord>(scratch.bySample),
                 std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, scratch.coverage, image,
                 options.shading, scratch.pixelShading, scratch.counters.resolve, passes, scratch.passes,
-                [&](std::uint32_t triangle) { return materialOf(triangle).baseColorTexture >= 0; },
+                [&](std::uint32_t triangle) { return sharingOf(materialOf(triangle), isStill(triangle)); },
                 [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
         std::optional<ExactDepth> depth;
         if (exactDepth) depth = [&](std::size_t k, float t) { return (*exactDepth)(list[k].source, t, ndc); };

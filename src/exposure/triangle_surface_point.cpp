@@ -14,6 +14,7 @@ TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, co
       m_isBox(site.boxFootprint),
       m_triangle(triangle),
       m_ndc(site.ndc),
+      m_samples(site.samples),
       m_cache(cache) {}
 
 const std::array<glm::vec2, 3>& TriangleSurfacePoint::cornerUvs() const {
@@ -87,6 +88,19 @@ bool TriangleSurfacePoint::plainSample(double u, raster::HomogeneousSample& s) c
     s = m_moving->sample(u, m_ndc);
     if (!s.isValid) return false;
     if (m_clamp) s.bary = clampedBarycentrics(s.bary);
+    return true;
+}
+
+bool TriangleSurfacePoint::atSample(const glm::dvec2& ndc, const SurfacePoint& middle, SurfacePoint& out) const {
+    const TriangleSegment& segment = select(0.5f);
+    if (!segment.isStill) return false;
+    const raster::HomogeneousSample s = m_moving->sample(0.0, ndc);
+    if (!s.isValid) return false;
+    const SegmentedGeometry::WorldCorners& corners = m_cache.cornersOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
+    const FlatGeometry& flat = m_geometry.flat();
+    const glm::vec3 bary(s.bary);
+    out = flat.surfacePoint(flat.triangles()[m_triangle], corners.world0, corners.normal0, bary, bary, bary, s.isFrontFacing);
+    out.duvdx = middle.duvdx, out.duvdy = middle.duvdy;
     return true;
 }
 

@@ -57,6 +57,9 @@ public:
     int materialIndex() const override;
     // Still: one segment holds [t0, t1], its corners and normals do not move, nor does the camera.
     bool isStill(float t0, float t1) const override;
+    std::span<const SiteSample> sharedSamples() const override { return m_samples; }
+    // (As a sample shading alone finds its point: its own barycentrics, not held to the triangle.)
+    bool atSample(const glm::dvec2& ndc, const SurfacePoint& middle, SurfacePoint& out) const override;
 
 private:
     const TriangleSegment& select(float t) const;
@@ -71,6 +74,7 @@ private:
     bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
+    std::span<const SiteSample> m_samples;  ///< ShadingSite::samples
     // The triangle's corner uvs, read on first use (a still point's shading never asks).
     const std::array<glm::vec2, 3>& cornerUvs() const;
     mutable bool m_hasUv = false;

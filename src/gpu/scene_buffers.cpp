@@ -37,6 +37,20 @@ GLint glWrap(WrapMode mode) {
 
 glm::vec4 quaternion(const glm::quat& q) { return {q.x, q.y, q.z, q.w}; }
 
+// Whether a triangle's corners and normals are the same at every key of its mesh.
+bool isStillAllKeys(const FlatGeometry& geometry, const FlatTriangle& tri) {
+    const Mesh& mesh = geometry.meshOf(tri);
+    const std::size_t nv = mesh.numVertices();
+    const std::uint32_t base = geometry.meshVertexOffset(tri.mesh);
+    for (int k = 1; k < mesh.numKeys; ++k)
+        for (int i = 0; i < 3; ++i) {
+            const std::size_t v = tri.vertices[i] - base;
+            if (mesh.positions[std::size_t(k) * nv + v] != mesh.positions[v]) return false;
+            if (mesh.hasNormals() && mesh.normals[std::size_t(k) * nv + v] != mesh.normals[v]) return false;
+        }
+    return true;
+}
+
 }  // namespace
 
 SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, int aa, bool isGridPattern, ShadingMode shading) {
@@ -70,8 +84,13 @@ SceneBuffers::SceneBuffers(const FlatGeometry& geometry, int width, int height, 
             keyNormals.emplace_back(mesh.hasNormals() ? mesh.normals[k] : glm::vec3(0.0f), 0.0f);
         }
     }
-    for (const FlatTriangle& tri : geometry.triangles())
-        triangles.emplace_back(tri.vertices, tri.material | (tri.isDoubleSided ? 0x80000000u : 0u));
+    // (The flags of scene.glsl's kDoubleSidedBit and kStillBit above the material.)
+    const bool isCameraStatic = scene.camera.isStatic();
+    for (const FlatTriangle& tri : geometry.triangles()) {
+        if (tri.material >= 0x40000000u) throw Error("the scene has more materials than the GL methods take (2^30)");
+        triangles.emplace_back(tri.vertices, tri.material | (tri.isDoubleSided ? 0x80000000u : 0u) |
+                                                 (isCameraStatic && isStillAllKeys(geometry, tri) ? 0x40000000u : 0u));
+    }
     m_numTriangles = triangles.size();
 
     std::vector<MaterialData> materials;

@@ -51,8 +51,13 @@ glm::vec3 vectorOf(ShadingMode mode, const SurfacePoint& point) {
 }
 
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye) {
+    return shadeSurfaceWithAlbedo(scene, mode, point, materialAlbedo(scene, point.material, point.uv, {point.duvdx, point.duvdy}, point.vertexColor),
+                                  eye);
+}
+
+ShadedColor shadeSurfaceWithAlbedo(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const ShadedColor& albedo, const glm::vec3& eye) {
     const Material& material = scene.materials[point.material];
-    ShadedColor result = materialAlbedo(scene, point.material, point.uv, {point.duvdx, point.duvdy}, point.vertexColor);
+    ShadedColor result = albedo;
     if (mode == ShadingMode::Phong)
         result.color = lightPhong(scene, material, result.color, point.position, point.normal, point.isFrontFacing, eye);
     else if (mode == ShadingMode::Normal)

@@ -53,6 +53,9 @@ glm::vec3 vectorOf(ShadingMode mode, const SurfacePoint& point);
 
 // The one shading function every CPU method calls, so methods differ only in visibility.
 ShadedColor shadeSurface(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const glm::vec3& eye);
+// The same with the point's albedo and alpha (materialAlbedo) given: where a shading filters
+// the texture itself (a still point's samples' lookups, exposure/span_shading.cpp).
+ShadedColor shadeSurfaceWithAlbedo(const Scene& scene, ShadingMode mode, const SurfacePoint& point, const ShadedColor& albedo, const glm::vec3& eye);
 
 // Albedo and alpha only (base colour times texture times vertex colour), the texture filtered
 // over an explicit footprint (default: a level-0 tap). A Mask material's alpha is already cut

@@ -244,4 +244,65 @@ TEST(PixelShading, EachCellHoldsAsManySamplesASideAsTheCellsAllow) {
     EXPECT_EQ(three.cellsFor(2), 2);
 }
 
+// A still textured triangle (Sharing::StillTextured) shares one shading a pixel across its
+// cells and times: one call, its site at one of its samples with that sample's footprint, and
+// every piece's sample and exposure listed for the texture's lookups. A lone piece shades as its
+// sample does alone.
+TEST(PixelShading, AStillTexturedTriangleSharesOneShadingThatListsEverySample) {
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(4);
+    constexpr auto kStill = [](std::uint32_t) { return Sharing::StillTextured; };
+    auto ndcOf = [&](int s) { return glm::dvec2(0.1) * glm::dvec2(pattern.offsets[std::size_t(s)]) / double(raster::kSubpixelScale); };
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 4);
+    float weights = 0.0f;
+    for (int s = 0; s < 16; ++s) {
+        // Seen over different, some disjoint, times (hidden in between by something moving).
+        const std::vector<VisiblePiece> pieces = s % 3 == 0 ? std::vector<VisiblePiece>{{2, 0.0f, 0.2f, 0.2f, true}, {2, 0.7f, 1.0f, 0.3f, true}}
+                                                            : std::vector<VisiblePiece>{{2, 0.1f * float(s % 4), 1.0f, 1.0f - 0.1f * float(s % 4), true}};
+        for (const VisiblePiece& p : pieces) weights += p.weight;
+        shading.add(s, ndcOf(s), std::span<const VisiblePiece>(pieces), kStill);
+    }
+    std::vector<SiteSample> listed;
+    ShadingSite site;
+    int calls = 0;
+    auto shade = [&](std::uint32_t triangle, float, float, const ShadingSite& s) {
+        ++calls, site = s;
+        listed.assign(s.samples.begin(), s.samples.end());
+        return ShadedColor{glm::vec3(float(triangle)), 1.0f};
+    };
+    std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(PixelShadingOptions{}, shade, colors, counters);
+    ASSERT_EQ(calls, 1);
+    EXPECT_EQ(counters.shadedSpans, 1);
+    EXPECT_EQ(counters.stillSampleLookups, 22);  // 16 samples, 6 of them seeing it twice
+    ASSERT_EQ(listed.size(), 22u);
+    float listedWeights = 0.0f;
+    for (const SiteSample& s : listed) {
+        listedWeights += s.weight;
+        EXPECT_TRUE(std::any_of(listed.begin(), listed.end(), [&](const SiteSample& o) { return o.ndc == s.ndc; }));
+    }
+    EXPECT_FLOAT_EQ(listedWeights, weights);
+    // One of the samples, with one sample spacing for its footprint, not held (it is on the
+    // triangle): as a sample shading alone.
+    EXPECT_TRUE(std::any_of(listed.begin(), listed.end(), [&](const SiteSample& o) { return o.ndc == site.ndc; }));
+    EXPECT_EQ(site.footprintPixels, glm::dvec2(0.25));
+    EXPECT_FALSE(site.clampToTriangle);
+    EXPECT_FALSE(site.boxFootprint);
+    for (int s = 0; s < 16; ++s) {
+        const float w = s % 3 == 0 ? 0.5f : 1.0f - 0.1f * float(s % 4);
+        EXPECT_FLOAT_EQ(colors[std::size_t(s)].x, 2.0f * w) << s;
+    }
+
+    // A lone piece: its own sample's site, no list.
+    shading.begin(pattern, glm::dvec2(0.1), 4);
+    const VisiblePiece piece{2, 0.0f, 1.0f, 1.0f, true};
+    shading.add(5, ndcOf(5), std::span<const VisiblePiece>(&piece, 1), kStill);
+    calls = 0;
+    shading.finish(PixelShadingOptions{}, shade, colors, counters);
+    ASSERT_EQ(calls, 1);
+    EXPECT_EQ(site.ndc, ndcOf(5));
+    EXPECT_TRUE(listed.empty());
+}
+
 }  // namespace streak::exposure

@@ -21,7 +21,7 @@ layout(location = 0) out vec4 o_color;
 void main() {
     uvec4 t = triangles[v_triangle];
     uint m = t.w & kMaterialMask;
-    bool isDoubleSided = (t.w & ~kMaterialMask) != 0u;
+    bool isDoubleSided = (t.w & kDoubleSidedBit) != 0u;
     if (!gl_FrontFacing && !isDoubleSided) discard;
 #if TRANSLUCENT_PASS || BLEND_PASS
     if (!isTranslucentMaterial(m)) discard;

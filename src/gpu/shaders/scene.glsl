@@ -92,7 +92,12 @@ float timeBetween(ShutterWindow w, float t0, float t1, float f) {
     return clamp(timeAt(w, u0 + f * (u1 - u0)), t0, t1);
 }
 
-const uint kMaterialMask = 0x7fffffffu;  // triangles[i].w: material, top bit double-sided
+// triangles[i].w: the material in the low 30 bits; the top bit double-sided; the next, still:
+// the triangle's keys and normals all equal under a still camera (SceneBuffers), so every point
+// of it shades the same at every time.
+const uint kMaterialMask = 0x3fffffffu;
+const uint kDoubleSidedBit = 0x80000000u;
+const uint kStillBit = 0x40000000u;
 
 // Motion weights (scene/motion.cpp): position(t) = sum of keys times weights. bezierOrder: the
 // degree of each Bezier piece, 0 for piecewise-linear keys.

@@ -428,6 +428,7 @@ private:
                 // A still triangle, at the middle of the stretch of the line that the span is.
                 return frame.shade(triangle, 0.0f, 1.0f, exposure::lineSite(site, t0, t1, width), row, scratch.cache);
             },
+            [&](std::uint32_t triangle) { return !scratch.isLineTile && frame.segmented->isStillAllShutter(triangle); },
             frame.options.checkDepthOrder ? &exactDepth : nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         if (scratch.isLineTile) counters.lineSampleSurplus += std::int64_t(numSamples / std::size_t(spp)) * (spp - frame.pattern.count());
         return true;

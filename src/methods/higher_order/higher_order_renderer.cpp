@@ -324,7 +324,8 @@ private:
             [&](std::uint32_t triangle, float t0, float t1, const exposure::ShadingSite& site, int row) {
                 return frame.shade(triangle, t0, t1, site, row, scratch.cache);
             },
-            nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
+            // (A curved point looks up its texture at its own place only: no still sharing.)
+            [](std::uint32_t) { return false; }, nullptr, frame.passes ? &*frame.passes : nullptr, frame.firstPass);
         return true;
     }
 

@@ -770,7 +770,8 @@ private:
                 }
                 exposure::mergeAbuttingPieces(spans);
                 scratch.pixelShading.add(s, scratch.sampleNdc[i], std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
-                    return frame.scene.materials[frame.geometry.triangles()[triangle].material].baseColorTexture >= 0;
+                    return exposure::sharingOf(frame.scene.materials[frame.geometry.triangles()[triangle].material],
+                                               !scratch.isLineTile && frame.segmented.isStillAllShutter(triangle));
                 });
             }
             scratch.pixelShading.finish(

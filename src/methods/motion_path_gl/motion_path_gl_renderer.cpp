@@ -46,7 +46,7 @@ struct ResolveCounters {
 
 // The pixel pass's counters (PixelShadingCounterBuffer).
 struct PixelShadingCounters {
-    std::uint32_t pixels, pieces, clusters, visibleTriangles, overflowPixels, maxClusters;
+    std::uint32_t pixels, pieces, clusters, visibleTriangles, overflowPixels, maxClusters, stillSampleLookups;
 };
 // The clusters of a pixel one dispatch of the pixel pass shades (see its shader: llvmpipe's limit
 // on an invocation's loop iterations).
@@ -311,6 +311,7 @@ public:
             shaded.pieces = m_pixelCounters.pieces;
             shaded.shadedSpans = std::int64_t(m_pixelCounters.clusters) + m_counters.shadedSpans;
             shaded.visibleTriangles = m_pixelCounters.visibleTriangles;
+            shaded.stillSampleLookups = m_pixelCounters.stillSampleLookups;
             exposure::recordPixelShadingStats(stats, shaded, double(grid.width) * grid.height, shading);
             stats.setCounter("piece_capacity", double(pieceCapacity));
             stats.setCounter("piece_overflow_samples", double(m_counters.pieceOverflowSamples));

@@ -33,7 +33,7 @@ void main() {
     MovingTriangle m = movingTriangle(open, close);
     double segmentT0 = double(segmentStart), segmentT1 = double(segmentEnd);
     bool checkNearPlane = !(minW >= u_projection.z);
-    bool isDoubleSided = (triangles[tri].w & ~kMaterialMask) != 0u;
+    bool isDoubleSided = (triangles[tri].w & kDoubleSidedBit) != 0u;
     double bounds[8];
     int n = insideSpans(m, ndc, double(u_projection.z), checkNearPlane, bounds);
     for (int i = 0; i + 1 < n; i += 2) {

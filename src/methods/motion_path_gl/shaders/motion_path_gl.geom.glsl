@@ -43,7 +43,7 @@ void emitCorner(vec2 ndc) {
 void main() {
     float minW = 1e30;
     for (int i = 0; i < 3; ++i) minW = min(minW, min(v_open[i].w, v_close[i].w));
-    bool isDoubleSided = (triangles[v_triangle[0]].w & ~kMaterialMask) != 0u;
+    bool isDoubleSided = (triangles[v_triangle[0]].w & kDoubleSidedBit) != 0u;
     if (minW > 0.0 && !isDoubleSided && isBackFacingThroughout()) return;
     if (!(minW > 0.0)) {
         emitCorner(vec2(-1.0, -1.0));

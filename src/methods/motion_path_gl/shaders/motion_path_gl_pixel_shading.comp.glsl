@@ -6,7 +6,11 @@
 // shaded once, over its hull, held to its triangle, with a box footprint as wide as its samples
 // spread, and each of its pieces adds that colour times its own weight to its sample. Untextured
 // triangles take one cell a pixel, textured ones u_shadingCells a side. A cluster of one piece,
-// where a cell holds one sample, shades as that sample alone would. Past u_maxPixelPieces a
+// where a cell holds one sample, shades as that sample alone would. A textured triangle still
+// all the shutter under a still camera (kStillBit) takes one cluster a pixel, all its pieces
+// whatever their times, whose colour is the mean of its pieces' samples' own shadings weighted
+// by their exposures (the CPU's Sharing::StillTextured, which lights each at its sample with one
+// sample's footprint). Past u_maxPixelPieces a
 // pixel's further pieces are shaded each at its sample (counted), each as a cluster of its own
 // numbered after the pixel's clusters.
 //
@@ -43,6 +47,7 @@ layout(std430, binding = 13) buffer PixelShadingCounterBuffer {
     uint visibleTriangles;   // per pixel, the distinct triangles of its pieces, summed
     uint pieceOverflowPixels;
     uint maxClusters;        // the most clusters in a pixel
+    uint stillSampleLookups; // the samples' shadings of still textured clusters
 };
 
 struct ShownRecord {
@@ -89,6 +94,7 @@ dvec2 clusterLo[MAX_PIXEL_PIECES], clusterHi[MAX_PIXEL_PIECES];
 dvec3 clusterNdcSum[MAX_PIXEL_PIECES];  // the weighted sum of its samples' NDC, and of the weights
 
 bool isTexturedTriangle(uint tri) { return materials[triangles[tri].w & kMaterialMask].info.x >= 0; }
+bool isStillTexturedTriangle(uint tri) { return (triangles[tri].w & kStillBit) != 0u && isTexturedTriangle(tri); }
 
 // Whether pending piece a sorts before b: by triangle, cell, start.
 bool sortsBefore(uint a, uint b) {
@@ -125,7 +131,7 @@ void main() {
             }
             pendingTriangle[numPending] = piece.triangle;
             pendingSpan[numPending] = vec3(piece.t0, piece.t1, piece.weight);
-            pendingSample[numPending] = uint(s) << 16 | (isTexturedTriangle(piece.triangle) ? cell : 0u);
+            pendingSample[numPending] = uint(s) << 16 | (isTexturedTriangle(piece.triangle) && !isStillTexturedTriangle(piece.triangle) ? cell : 0u);
             order[numPending] = uint(numPending);
             ++numPending;
         }
@@ -159,7 +165,7 @@ void main() {
             if (pendingTriangle[p] == pendingTriangle[q] && (pendingSample[p] & 0xffffu) == (pendingSample[q] & 0xffffu)) {
                 vec2 hull = clusterSpan[numClusters - 1];
                 float overlap = min(hull.y, pendingSpan[p].y) - pendingSpan[p].x;
-                joins = overlap >= kShareOverlap * min(pendingSpan[p].y - pendingSpan[p].x, hull.y - hull.x);
+                joins = isStillTexturedTriangle(pendingTriangle[p]) || overlap >= kShareOverlap * min(pendingSpan[p].y - pendingSpan[p].x, hull.y - hull.x);
             }
         }
         dvec2 ndc = sampleNdcs[pendingSample[p] >> 16];
@@ -203,6 +209,7 @@ void main() {
         ShadingSite site;
         int begin = 0, end = 0, pastSample = 0;
         float pastWeight = 0.0;
+        bool isStillShared = false;
         if (isPast) {
             // The piece numbered (c - numClusters) past u_maxPixelPieces in the gather's walk,
             // shaded at its sample.
@@ -226,7 +233,8 @@ void main() {
             uint first = order[begin];
             tri = pendingTriangle[first];
             span = clusterSpan[c];
-            if (isCellOneSample && end - begin == 1) {
+            isStillShared = end - begin > 1 && isStillTexturedTriangle(tri);
+            if ((isCellOneSample || isStillTexturedTriangle(tri)) && end - begin == 1) {
                 site = sampleSite(sampleNdcs[pendingSample[first] >> 16]);
             } else {
                 dvec2 lo = clusterLo[c], hi = clusterHi[c];
@@ -236,7 +244,19 @@ void main() {
                 site = ShadingSite(ndc, footprint, true, u_boxFilter != 0);
             }
         }
-        vec3 color = shadeTimeSpanAt(tri, span.x, span.y, site).rgb;
+        // (One call of shadeTimeSpanAt, for a still cluster once a piece, at the piece's sample.)
+        int members = isStillShared ? end - begin : 1;
+        vec3 sum = vec3(0.0);
+        float weights = 0.0;
+        for (int m = 0; m < members; ++m) {
+            uint piece = order[begin + m];
+            ShadingSite at = isStillShared ? sampleSite(sampleNdcs[pendingSample[piece] >> 16]) : site;
+            float weight = isStillShared ? pendingSpan[piece].z : 1.0;
+            sum += weight * shadeTimeSpanAt(tri, span.x, span.y, at).rgb;
+            weights += weight;
+        }
+        vec3 color = weights > 0.0 ? sum / weights : vec3(0.0);
+        if (isStillShared) atomicAdd(stillSampleLookups, uint(members));
         if (isPast) {
             vec3 added = color * pastWeight;
             colors[pastSample] += added;

@@ -11,7 +11,7 @@ vec2 rasterOf(vec4 clip) { return vec2((clip.x / clip.w * 0.5 + 0.5) * float(u_v
 void main() {
     uvec4 t = triangles[v_triangle];
     uint m = t.w & kMaterialMask;
-    bool isDoubleSided = (t.w & ~kMaterialMask) != 0u;
+    bool isDoubleSided = (t.w & kDoubleSidedBit) != 0u;
     if (!gl_FrontFacing && !isDoubleSided) discard;
     if (isTranslucentMaterial(m)) discard;
     vec2 velocity = 0.5 * (rasterOf(v_clipClose) - rasterOf(v_clipOpen));

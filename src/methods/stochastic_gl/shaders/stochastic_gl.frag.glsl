@@ -32,7 +32,7 @@ void main() {
         vertexAt(tri[i], t, corners[i], cornerNormals[i]);
         clip[i] = clipAt(tri[i], t);
     }
-    bool isDoubleSided = (tri.w & ~kMaterialMask) != 0u;
+    bool isDoubleSided = (tri.w & kDoubleSidedBit) != 0u;
     RasterHit hit;
     if (!hitTriangle(clip, !isDoubleSided, sampleRaster(s), hit)) discard;
 #if TRANSLUCENT_PASS
