@@ -118,15 +118,18 @@ namespace {
 
 // A still textured point shared by several samples (ShadingSite::samples): the mean of its
 // shadings at each sample's own point with the middle's footprint, weighted by their exposures.
-// Nothing moves, so each is what that sample shades alone but for the footprint.
+// Nothing moves, so each is what that sample shades alone but for the footprint, whose lookup
+// is planned once.
 ShadedColor shadeStillSamples(const Scene& scene, ShadingMode mode, const SurfacePoint& middle, std::span<const SiteSample> samples,
                               const MovingSurfacePoint& point, const glm::vec3& eye) {
+    const int texture = scene.materials[middle.material].baseColorTexture;
+    const Texture::Lookup lookup = texture >= 0 ? scene.textures[std::size_t(texture)].lookupOf({middle.duvdx, middle.duvdy}) : Texture::Lookup{};
     ShadedColor sum{glm::vec3(0.0f), 0.0f};
     float weight = 0.0f;
     for (const SiteSample& sample : samples) {
         SurfacePoint p;
         if (!point.atSample(sample.ndc, middle, p)) continue;
-        const ShadedColor c = shadeSurface(scene, mode, p, eye);
+        const ShadedColor c = shadeSurfaceWithAlbedo(scene, mode, p, materialAlbedoWith(scene, p.material, p.uv, lookup, p.vertexColor), eye);
         sum.color += sample.weight * c.color, sum.alpha += sample.weight * c.alpha, weight += sample.weight;
     }
     if (!(weight > 0.0f)) return shadeSurface(scene, mode, middle, eye);

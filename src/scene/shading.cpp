@@ -7,12 +7,28 @@
 
 namespace streak {
 
+namespace {
+
+ShadedColor albedoOf(const Material& material, const glm::vec4& texel, const glm::vec4& vertexColor) {
+    return {material.baseColor * glm::vec3(texel) * glm::vec3(vertexColor), material.alphaOf(texel.w * vertexColor.w)};
+}
+
+}  // namespace
+
 ShadedColor materialAlbedo(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, const TextureFootprint& footprint,
                            const glm::vec4& vertexColor) {
     const Material& material = scene.materials[materialIndex];
     glm::vec4 texel(1.0f);
     if (material.baseColorTexture >= 0) texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, footprint);
-    return {material.baseColor * glm::vec3(texel) * glm::vec3(vertexColor), material.alphaOf(texel.w * vertexColor.w)};
+    return albedoOf(material, texel, vertexColor);
+}
+
+ShadedColor materialAlbedoWith(const Scene& scene, std::uint32_t materialIndex, const glm::vec2& uv, const Texture::Lookup& lookup,
+                           const glm::vec4& vertexColor) {
+    const Material& material = scene.materials[materialIndex];
+    glm::vec4 texel(1.0f);
+    if (material.baseColorTexture >= 0) texel = scene.textures[std::size_t(material.baseColorTexture)].sample(uv, lookup);
+    return albedoOf(material, texel, vertexColor);
 }
 
 PhongTerms phongTerms(const Scene& scene, const Material& material, const glm::vec3& position, glm::vec3 normal,

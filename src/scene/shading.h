@@ -62,6 +62,10 @@ ShadedColor shadeSurfaceWithAlbedo(const Scene& scene, ShadingMode mode, const S
 // to 0 or 1 here, so averages of it are coverage.
 ShadedColor materialAlbedo(const Scene& scene, std::uint32_t material, const glm::vec2& uv, const TextureFootprint& footprint = {},
                            const glm::vec4& vertexColor = glm::vec4(1.0f));
+// The same with the lookup of the material's texture planned already (Texture::lookupOf of the
+// footprint), for points that share one footprint.
+ShadedColor materialAlbedoWith(const Scene& scene, std::uint32_t material, const glm::vec2& uv, const Texture::Lookup& lookup,
+                               const glm::vec4& vertexColor);
 
 // Phong lighting split by what multiplies the albedo: colour = albedo * diffuse + specular.
 // Methods that average lighting and texture at different rates combine the two themselves.

@@ -206,9 +206,14 @@ private:
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint) const {
     if (footprint.isBox) return sampleBox(uv, footprint);
+    return sample(uv, lookupOf(footprint));
+}
+
+Texture::Lookup Texture::lookupOf(const TextureFootprint& footprint) const {
     const glm::vec2 size{float(width()), float(height())};
     const FootprintEllipse e = footprintEllipse(footprint.duvdx * size, footprint.duvdy * size, footprint.sweep * size);
-    if (!std::isfinite(e.major)) return sample(uv, float(numLevels() - 1));
+    // (A footprint that is not finite takes the coarsest level, as sample(uv, lod) clamps it.)
+    if (!std::isfinite(e.major)) return {float(numLevels() - 1), 1, glm::vec2(0.0f)};
     const bool isSwept = footprint.sweep != glm::vec2(0.0f);
     const int maxTaps = isSwept ? std::max(footprint.maxSweptTaps, 1) : kMaxAnisotropy;
     const float width = std::max(tapWidth(e, maxTaps), std::exp2(std::max(footprint.minLod, 0.0f)));
@@ -216,11 +221,14 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const TextureFootprint& footprint
     const float extraTaps = (std::max(footprint.tapsPerWidth, 1.0f) - 1.0f) * glm::length(footprint.sweep * size);
     const int taps = std::clamp(int(std::ceil((e.major + extraTaps) / width - 1e-3f)), 1, maxTaps);
     const float lod = width > 0.0f ? std::log2(width) : 0.0f;
-    if (taps == 1) return trilinearAt(uv, lod);
-    const glm::vec2 step = e.majorAxis / size / float(taps);  // uv between taps
+    return {lod, taps, taps == 1 ? glm::vec2(0.0f) : e.majorAxis / size / float(taps)};  // step: uv between taps
+}
+
+glm::vec4 Texture::sample(const glm::vec2& uv, const Lookup& lookup) const {
+    if (lookup.taps == 1) return trilinearAt(uv, lookup.lod);
     glm::vec4 sum(0.0f);
-    for (int i = 0; i < taps; ++i) sum += trilinearAt(uv + step * (float(i) + 0.5f - 0.5f * float(taps)), lod);
-    return sum / float(taps);
+    for (int i = 0; i < lookup.taps; ++i) sum += trilinearAt(uv + lookup.step * (float(i) + 0.5f - 0.5f * float(lookup.taps)), lookup.lod);
+    return sum / float(lookup.taps);
 }
 
 Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps) const {

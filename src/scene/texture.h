@@ -85,6 +85,16 @@ public:
     // the minor axis, so a surface seen at a slant stays sharp across its compressed direction.
     static constexpr int kMaxAnisotropy = kDefaultMaxAnisotropy;
     glm::vec4 sample(const glm::vec2& uv, const TextureFootprint& footprint) const;
+    // That lookup's plan, which depends on the footprint alone: its level and its taps along the
+    // major axis (a step apart in uv). Samples that share a footprint (a still triangle's
+    // samples in one pixel) plan once; sample(uv, lookupOf(f)) is sample(uv, f). Not for a box.
+    struct Lookup {
+        float lod = 0.0f;
+        int taps = 1;
+        glm::vec2 step{0.0f};
+    };
+    Lookup lookupOf(const TextureFootprint& footprint) const;
+    glm::vec4 sample(const glm::vec2& uv, const Lookup& lookup) const;
     // The box filter (TextureFootprint::isBox): a grid of bilinear taps over the parallelogram,
     // at most kMaxBoxTaps, at the finest level whose texels are no narrower than the taps' spacing,
     // so each tap's texel covers the ground between taps and nothing is aliased (minLod, a

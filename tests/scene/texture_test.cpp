@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 namespace streak {
@@ -114,6 +115,28 @@ TEST(TextureFootprint, AnisotropicKeepsTheMinorAxisSharp) {
     EXPECT_GT(diagonal.sample(onWhite, slanted).x, 0.9f);
     EXPECT_LT(diagonal.sample(onWhite + glm::vec2(4.0f / 256), slanted).x, 0.1f);  // x + y = 12: stripe 1
     EXPECT_NEAR(diagonal.sample(onWhite, diagonal.lodFromFootprint(slanted.duvdx, slanted.duvdy)).x, 0.5f, 0.1f);
+}
+
+// A lookup's plan (Texture::lookupOf): an isotropic footprint 4 texels across is one tap on
+// level 2; one 2 texels across and 16 along is 8 taps on level 1, 2 texels apart along the
+// major axis; one that is not finite takes the coarsest level. Planned once, the lookup at
+// another point is that point's own (what a still pixel's samples share).
+TEST(TextureFootprint, ALookupsPlanIsItsLevelAndItsTapsAlongTheMajorAxis) {
+    const Texture tex = stripes([](int x, int y) { return (x + 3 * y) / 5; });  // 256 x 256
+    const float t = 1.0f / 256;
+    const Texture::Lookup iso = tex.lookupOf({{4.0f * t, 0.0f}, {0.0f, 4.0f * t}});
+    EXPECT_EQ(iso.taps, 1);
+    EXPECT_NEAR(iso.lod, 2.0f, 1e-5f);
+    const Texture::Lookup aniso = tex.lookupOf({{0.0f, 16.0f * t}, {2.0f * t, 0.0f}});
+    EXPECT_EQ(aniso.taps, 8);
+    EXPECT_NEAR(aniso.lod, 1.0f, 1e-5f);
+    EXPECT_NEAR(std::abs(aniso.step.y), 2.0f * t, 1e-7f);
+    EXPECT_NEAR(aniso.step.x, 0.0f, 1e-7f);
+    const Texture::Lookup wild = tex.lookupOf({{std::numeric_limits<float>::infinity(), 0.0f}, {0.0f, t}});
+    EXPECT_EQ(wild.taps, 1);
+    EXPECT_EQ(wild.lod, float(tex.numLevels() - 1));
+    for (const glm::vec2 uv : {glm::vec2(0.31f, 0.62f), glm::vec2(0.05f, 0.9f)})
+        EXPECT_EQ(tex.sample(uv, aniso), tex.sample(uv, TextureFootprint{{0.0f, 16.0f * t}, {2.0f * t, 0.0f}}));
 }
 
 // minLod is a floor: the taps widen to it and fewer of them cover the major axis.
