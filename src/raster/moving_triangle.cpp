@@ -28,7 +28,10 @@ MovingTriangle::MovingTriangle(const std::array<glm::vec4, 3>& open, const std::
 HomogeneousSample MovingTriangle::fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc,
                                              bool isFront) {
     const glm::dvec3 p(ndc, 1.0);
-    const glm::dvec3 e(glm::dot(edges[0], p), glm::dot(edges[1], p), glm::dot(edges[2], p));
+    return fromEdgeValues({glm::dot(edges[0], p), glm::dot(edges[1], p), glm::dot(edges[2], p)}, w, isFront);
+}
+
+HomogeneousSample MovingTriangle::fromEdgeValues(const glm::dvec3& e, const glm::dvec3& w, bool isFront) {
     const double sum = e.x + e.y + e.z;
     HomogeneousSample s;
     s.isFrontFacing = isFront;

@@ -54,6 +54,12 @@ public:
     // Perspective-correct barycentrics, view depth and facing at time u and point ndc: equal to
     // evaluateHomogeneous() of the corners at u.
     HomogeneousSample sample(double u, const glm::dvec2& ndc) const;
+    // A still triangle's sample() at the point whose edge functions are `edges`
+    // (edgeFunctions(ndc), or an EdgeBatch's): the same values, without evaluating them again.
+    HomogeneousSample stillSample(const std::array<Quadratic, 3>& edges) const {
+        return fromEdgeValues({edges[1].c, edges[2].c, edges[0].c}, {m_corner[0].z, m_corner[1].z, m_corner[2].z},
+                              glm::dot(m_corner[0], m_c[1]) > 0.0);
+    }
     // sample() at ndc and at ndc + offsets[i] (the neighbours a texture footprint needs), at
     // the cost of little more than one: the edge vectors at u are shared.
     template <std::size_t N>
@@ -110,6 +116,8 @@ private:
                     RootCaseCounts* rootCases) const;
     bool isInsideAt(double u, const glm::dvec2& ndc, const std::array<double, 3>& values) const;
     static HomogeneousSample fromEdges(const std::array<glm::dvec3, 3>& edges, const glm::dvec3& w, const glm::dvec2& ndc, bool isFront);
+    // From the values e of the edges opposite each corner (edges 1, 2, 0).
+    static HomogeneousSample fromEdgeValues(const glm::dvec3& e, const glm::dvec3& w, bool isFront);
     // (A still triangle's are its constants: with zero motion terms the sums below are exactly
     // them, and the shading of a still frame asks for them at every sample.)
     glm::dvec3 corner(int i, double u) const { return m_isStill ? m_corner[i] : m_corner[i] + u * m_delta[i]; }

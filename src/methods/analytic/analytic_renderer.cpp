@@ -320,7 +320,9 @@ private:
                         const int m = raster::insideSpansOf(moving, scratch.batch, i, ndc, scene.camera.zNear, checkNearPlane, b, &counters.roots);
                         for (int k = 0; k + 1 < m; k += 2) {
                             // (A still triangle is the same at both ends.)
-                            const raster::HomogeneousSample s0 = moving.sample(b[k], ndc);
+                            // (A still one's from the edge values the batch found.)
+                            const raster::HomogeneousSample s0 =
+                                moving.isStill() ? moving.stillSample(scratch.batch.edges[std::size_t(i)]) : moving.sample(b[k], ndc);
                             const raster::HomogeneousSample s1 = moving.isStill() ? s0 : moving.sample(b[k + 1], ndc);
                             // The triangle cannot turn over inside a span (its edges would have to
                             // pass the sample), so its facing at mid-span is its facing throughout.
