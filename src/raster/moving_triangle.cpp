@@ -169,6 +169,13 @@ std::array<double, 4> orientationBernstein(const std::array<glm::vec4, 3>& open,
 }
 
 bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
+    // A still triangle's eight determinants are one: its coefficients are it (a mean of equal
+    // terms keeps their sign), so one determinant says what all four say, at an eighth of the
+    // cost on a still dense mesh's million segments.
+    if (open == close) {
+        auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
+        return glm::dot(xyw(open[0]), glm::cross(xyw(open[1]), xyw(open[2]))) < 0.0;
+    }
     for (const double c : orientationBernstein(open, close))
         if (!(c < 0.0)) return false;
     return true;

@@ -405,4 +405,24 @@ TEST(MovingTriangleStill, SamplesAreThePlainHomogeneousEvaluationAtEveryTime) {
     EXPECT_GT(valid, 15000);
 }
 
+// A still triangle's facing throughout (one determinant) is what its Bernstein coefficients
+// say (eight determinants): on random triangles at any depths, edge-on ones (in a line) and ones
+// with a corner at the eye's plane (w 0), both orientations.
+TEST(MovingTriangleStill, IsBackFacingThroughoutIsItsBernsteinCoefficientsSign) {
+    Rng rng(53);
+    int back = 0, front = 0;
+    for (int i = 0; i < 2000; ++i) {
+        std::array<glm::vec4, 3> c;
+        for (glm::vec4& p : c) p = glm::vec4(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(0, 1), rng.uniform(0.01f, 3.0f));
+        if (i % 7 == 0) c[2] = c[0] + (c[1] - c[0]) * 0.25f;
+        if (i % 11 == 0) c[1].w = 0.0f;
+        const std::array<double, 4> b = orientationBernstein(c, c);
+        const bool expected = b[0] < 0.0 && b[1] < 0.0 && b[2] < 0.0 && b[3] < 0.0;
+        EXPECT_EQ(isBackFacingThroughout(c, c), expected) << i;
+        back += expected, front += b[0] > 0.0;
+    }
+    EXPECT_GT(back, 500);
+    EXPECT_GT(front, 500);
+}
+
 }  // namespace streak::raster
