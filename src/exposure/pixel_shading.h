@@ -77,11 +77,12 @@ enum class Sharing : std::uint8_t {
     // Textured and moving: one shading per cell, its texture filtered over the cell's samples
     // swept along the motion (a box).
     Cells,
-    // Textured and still all the shutter, under a still camera: one shading per pixel, lit once,
-    // its texture looked up at each of its samples' own points (ShadingSite::samples), as each
-    // would alone. The samples' lookups are the pixel's box filter of a still texture, which a
-    // box over a cell only approximates, and the point, its footprint and its lighting, the cost
-    // of a still sample's shading beside its lookup, are found once.
+    // Textured and still all the shutter, under a still camera: one shading per pixel, whose
+    // point and texture footprint are found once and whose surface is then shaded (looked up and
+    // lit) at each of its samples' own points (ShadingSite::samples), as each would alone but for
+    // the footprint. The samples' lookups are the pixel's box filter of a still texture, which a
+    // box over a cell only approximates, and the point with its footprint (three perspective
+    // evaluations), most of a still sample's cost beside its lookup, is found once.
     StillTextured,
 };
 
@@ -98,7 +99,7 @@ struct PixelShadingCounters {
     std::int64_t pieces = 0;            ///< visible opaque pieces of samples (abutting ones merged)
     std::int64_t shadedSpans = 0;       ///< the shadings they took
     std::int64_t visibleTriangles = 0;  ///< per pixel, the distinct triangles of its pieces, summed
-    std::int64_t stillSampleLookups = 0;  ///< texture lookups of shared still shadings (Sharing::StillTextured), one a sample
+    std::int64_t stillSampleLookups = 0;  ///< the samples shared still shadings listed (Sharing::StillTextured), each looked up and lit, one a piece
     void add(const PixelShadingCounters& o) {
         pixels += o.pixels, pieces += o.pieces, shadedSpans += o.shadedSpans, visibleTriangles += o.visibleTriangles;
         stillSampleLookups += o.stillSampleLookups;

@@ -34,12 +34,11 @@ struct ShadingSite {
     // averaged alike (a box, MovingSurfacePoint::hasBoxFootprint), not a sample's bell.
     bool boxFootprint = false;
     // A still textured triangle's shading shared by the samples of a pixel that see it
-    // (PixelShading, Sharing::StillTextured): the point at `ndc` (one of them) is lit once, and
-    // its texture is looked up at each sample's own point with `ndc`'s footprint of one sample
-    // spacing, the lookups weighted by the samples' exposures. Nothing still moves between the
-    // samples' times, so this is per-sample shading with the lighting and footprint taken once;
-    // unlit it is per-sample shading's colour but for the footprint's change across the pixel.
-    // Empty everywhere else.
+    // (PixelShading, Sharing::StillTextured): the point at `ndc` (one of them) gives the texture
+    // footprint of one sample spacing, found once, and the surface is shaded (looked up and lit)
+    // at each sample's own point with it, the shadings weighted by the samples' exposures.
+    // Nothing still moves between the samples' times, so this is per-sample shading but for the
+    // footprint's change across the pixel. Empty everywhere else.
     std::span<const SiteSample> samples{};
 };
 
