@@ -265,6 +265,21 @@ TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
                 if (std::string(name) == "rotating-cube") EXPECT_GT(gpuStats.counter("pixel_shading_dispatches"), 1.0) << what;
             }
     }
+    // A still cluster is shaded once per piece within one dispatch: at --aa 8 twist's backdrop
+    // gives 64 pieces a pixel, and every pixel is still shaded within llvmpipe's 65,535 loop
+    // iterations an invocation (an unshaded pixel would cost the PSNR tens of dB).
+    {
+        const Scene twist = builtin("twist");
+        const OptionMap options = test::withOption("shading", "pixel");
+        RenderStats gpuStats, cpuStats;
+        const Image gl = test::render("motion-path-gl", twist, 48, 36, options, &gpuStats, ShadingMode::Phong, 8);
+        const Image cpu = test::render("motion-path", twist, 48, 36, options, &cpuStats, ShadingMode::Phong, 8);
+        std::printf("twist --aa 8: gl vs cpu %.1f dB\n", psnr(gl, cpu));
+        EXPECT_GE(psnr(gl, cpu), 80.0);
+        EXPECT_GT(cpuStats.counter("still_sample_lookups"), 0.0);
+        EXPECT_EQ(gpuStats.counter("still_sample_lookups"), cpuStats.counter("still_sample_lookups"));
+        EXPECT_EQ(gpuStats.counter("shaded_spans"), cpuStats.counter("shaded_spans"));
+    }
     // The option reaches the shaders: on a textured scene the shared shading is not per-sample's.
     const Scene cube = builtin("rotating-cube");
     OptionMap pixel = test::withOption("shading", "pixel");
