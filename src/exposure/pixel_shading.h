@@ -15,7 +15,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -132,18 +131,13 @@ public:
     // NDC, shaded in cellsPerAxis x cellsPerAxis cells (ShadingRate::Pixel): each cell's
     // samples share their shadings.
     void begin(const raster::SamplePattern& pattern, const glm::dvec2& pixelNdc, int cellsPerAxis);
-    // Adds the visible pieces of the pixel's sample `sample` at `ndc`. sharingOf(triangle) says
-    // how a triangle's pieces share (Sharing), or, as a bool, whether it is textured (Cells) or
-    // not (Pixel).
+    // Adds the visible pieces of the pixel's sample `sample` at `ndc`; sharingOf(triangle) says
+    // how a triangle's pieces share (Sharing).
     template <class SharingOf>
     void add(int sample, const glm::dvec2& ndc, std::span<const VisiblePiece> pieces, SharingOf&& sharingOf) {
         m_ndc[std::size_t(sample)] = ndc;
         for (const VisiblePiece& piece : pieces) {
-            Sharing sharing;
-            if constexpr (std::is_same_v<std::decay_t<decltype(sharingOf(piece.triangle))>, bool>)
-                sharing = sharingOf(piece.triangle) ? Sharing::Cells : Sharing::Pixel;
-            else
-                sharing = sharingOf(piece.triangle);
+            const Sharing sharing = sharingOf(piece.triangle);
             m_pending.push_back({piece, std::uint32_t(sample), sharing == Sharing::Cells ? m_cell[std::size_t(sample)] : 0u,
                                  sharing == Sharing::StillTextured});
         }
@@ -184,8 +178,8 @@ public:
             if ((isCellOneSample || cluster.isStillTextured) && isSingle) {
                 color = shade(single.piece.triangle, single.piece.t0, single.piece.t1, sampleSite(m_ndc[single.sample], m_samplesPerAxis)).color;
             } else if (cluster.isStillTextured) {
-                // Lit at the sample nearest the samples' middle (on the triangle, as a centre of
-                // their bounds need not be), looked up at each.
+                // The point and footprint at the sample nearest the samples' middle (on the
+                // triangle, as a centre of their bounds need not be), each sample looked up and lit.
                 m_siteSamples.clear();
                 glm::dvec2 site = m_ndc[single.sample];
                 double nearest = std::numeric_limits<double>::infinity();

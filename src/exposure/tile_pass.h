@@ -128,17 +128,17 @@ inline void setTilePixels(const raster::PixelBounds& rect, int spp, std::span<co
 // resolve(ndc, pixel row, intervals) resolves a sample (exposure::resolveSample), returning the
 // colour of all but its visible opaque pieces, which it leaves in `pieces`, and its coverage
 // (ResolvedSample); the pixel's pieces
-// are then shaded together as `shading` says (textured triangles, isTextured(triangle), in cells) by shade(triangle, t0, t1, ShadingSite, pixel row)
+// are then shaded together as `shading` says (each triangle as sharingOf(triangle), a Sharing, says) by shade(triangle, t0, t1, ShadingSite, pixel row)
 // (PixelShading), and the tile's pixels become the mean of their samples, colour and coverage.
 // A sample with no intervals is the background. With `passes`, each pixel's passes are written
 // from what resolve() adds to pixelPasses. sampleNdc holds the tile's samples in NDC
 // (tileSampleNdc of rect and pattern), indexed as the runs.
-template <class Record, class IsTextured, class Resolve, class Shade>
+template <class Record, class SharingOf, class Resolve, class Shade>
 void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& pattern, int width, int height, const glm::vec3& background,
                  std::span<const glm::dvec2> sampleNdc, std::span<const Record> bySample, std::span<const std::uint32_t> runs, std::vector<ExposureInterval>& list,
                  const std::vector<VisiblePiece>& pieces, std::vector<glm::vec3>& color, std::vector<float>& coverage, Image& image,
                  const PixelShadingOptions& shading,
-                 PixelShading& pixelShading, SampleResolveCounters& counters, PassFrame* passes, PixelPasses& pixelPasses, IsTextured&& isTextured,
+                 PixelShading& pixelShading, SampleResolveCounters& counters, PassFrame* passes, PixelPasses& pixelPasses, SharingOf&& sharingOf,
                  Resolve&& resolve, Shade&& shade) {
     const int tileWidth = rect.x1 - rect.x0 + 1, spp = pattern.count();
     const std::size_t numSamples = runs.size() - 1;
@@ -171,7 +171,7 @@ void resolveTile(const raster::PixelBounds& rect, const raster::SamplePattern& p
             for (std::uint32_t k = runs[i]; k < runs[i + 1]; ++k) list.push_back(bySample[k].interval);
             const ResolvedSample resolved = resolve(ndc, row, list);
             color[i] = resolved.color, coverage[i] = resolved.coverage;
-            pixelShading.add(s, ndc, std::span<const VisiblePiece>(pieces), isTextured);
+            pixelShading.add(s, ndc, std::span<const VisiblePiece>(pieces), sharingOf);
         }
         const auto resolved = isTimed ? Clock::now() : Clock::time_point{};
         pixelShading.finish(

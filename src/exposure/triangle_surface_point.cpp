@@ -68,6 +68,12 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
         if (!plainSample(u, s)) return false;
         right = down = s.bary;
     }
+    out = pointOf(segment, u, s, right, down);
+    return true;
+}
+
+SurfacePoint TriangleSurfacePoint::pointOf(const TriangleSegment& segment, double u, const raster::HomogeneousSample& s, const glm::dvec3& right,
+                                           const glm::dvec3& down) const {
     std::array<glm::vec3, 3> world, normal;
     const float uf = float(u);
     const SegmentedGeometry::WorldCorners& corners = m_cache.cornersOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
@@ -80,8 +86,7 @@ bool TriangleSurfacePoint::at(float t, bool withFootprint, SurfacePoint& out) co
         }
     }
     const FlatGeometry& flat = m_geometry.flat();
-    out = flat.surfacePoint(flat.triangles()[m_triangle], world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
-    return true;
+    return flat.surfacePoint(flat.triangles()[m_triangle], world, normal, glm::vec3(s.bary), glm::vec3(right), glm::vec3(down), s.isFrontFacing);
 }
 
 bool TriangleSurfacePoint::plainSample(double u, raster::HomogeneousSample& s) const {
@@ -96,10 +101,7 @@ bool TriangleSurfacePoint::atSample(const glm::dvec2& ndc, const SurfacePoint& m
     if (!segment.isStill) return false;
     const raster::HomogeneousSample s = m_moving->sample(0.0, ndc);
     if (!s.isValid) return false;
-    const SegmentedGeometry::WorldCorners& corners = m_cache.cornersOf(m_geometry, std::uint32_t(&segment - m_geometry.segments().data()));
-    const FlatGeometry& flat = m_geometry.flat();
-    const glm::vec3 bary(s.bary);
-    out = flat.surfacePoint(flat.triangles()[m_triangle], corners.world0, corners.normal0, bary, bary, bary, s.isFrontFacing);
+    out = pointOf(segment, 0.0, s, s.bary, s.bary);
     out.duvdx = middle.duvdx, out.duvdy = middle.duvdy;
     return true;
 }

@@ -67,6 +67,10 @@ private:
     // The sample at local time u of the selected segment, without neighbours, its barycentrics
     // held to the triangle where the site asks; false where it cannot be evaluated.
     bool plainSample(double u, raster::HomogeneousSample& s) const;
+    // The surface point of `segment` (the selected one) at local time u whose barycentrics are
+    // s's, right's and down's those of its footprint's neighbours.
+    SurfacePoint pointOf(const TriangleSegment& segment, double u, const raster::HomogeneousSample& s, const glm::dvec3& right,
+                         const glm::dvec3& down) const;
 
     const SegmentedGeometry& m_geometry;
     glm::dvec2 m_step;  ///< the footprint in NDC

@@ -149,17 +149,22 @@ int MovingTriangle::solvedSpans(const std::array<Quadratic, 3>& q, const glm::dv
     return count;
 }
 
+namespace {
+
+glm::dvec3 xywOf(const glm::vec4& c) { return {c.x, c.y, c.w}; }
+
+}  // namespace
+
 std::array<double, 4> orientationBernstein(const std::array<glm::vec4, 3>& open, const std::array<glm::vec4, 3>& close) {
-    auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
     std::array<double, 4> coefficients{};
     for (int k = 0; k <= 3; ++k) {
         double sum = 0.0;
         int count = 0;
         for (int mask = 0; mask < 8; ++mask) {
             if (std::popcount(unsigned(mask)) != k) continue;
-            const glm::dvec3 r0 = xyw(mask & 1 ? close[0] : open[0]);
-            const glm::dvec3 r1 = xyw(mask & 2 ? close[1] : open[1]);
-            const glm::dvec3 r2 = xyw(mask & 4 ? close[2] : open[2]);
+            const glm::dvec3 r0 = xywOf(mask & 1 ? close[0] : open[0]);
+            const glm::dvec3 r1 = xywOf(mask & 2 ? close[1] : open[1]);
+            const glm::dvec3 r2 = xywOf(mask & 4 ? close[2] : open[2]);
             sum += glm::dot(r0, glm::cross(r1, r2));
             ++count;
         }
@@ -172,10 +177,7 @@ bool isBackFacingThroughout(const std::array<glm::vec4, 3>& open, const std::arr
     // A still triangle's eight determinants are one: its coefficients are it (a mean of equal
     // terms keeps their sign), so one determinant says what all four say, at an eighth of the
     // cost on a still dense mesh's million segments.
-    if (open == close) {
-        auto xyw = [](const glm::vec4& c) { return glm::dvec3(c.x, c.y, c.w); };
-        return glm::dot(xyw(open[0]), glm::cross(xyw(open[1]), xyw(open[2]))) < 0.0;
-    }
+    if (open == close) return glm::dot(xywOf(open[0]), glm::cross(xywOf(open[1]), xywOf(open[2]))) < 0.0;
     for (const double c : orientationBernstein(open, close))
         if (!(c < 0.0)) return false;
     return true;

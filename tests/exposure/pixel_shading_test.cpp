@@ -26,8 +26,8 @@ struct Recorder {
 
 glm::dvec2 sampleNdc(int s) { return {0.01 * s, -0.02 * s}; }
 
-constexpr auto kUntextured = [](std::uint32_t) { return false; };
-constexpr auto kTextured = [](std::uint32_t) { return true; };
+constexpr auto kUntextured = [](std::uint32_t) { return Sharing::Pixel; };
+constexpr auto kTextured = [](std::uint32_t) { return Sharing::Cells; };
 
 }  // namespace
 
