@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string_view>
 
 namespace streak {
 
@@ -85,6 +86,10 @@ class GltfAgreement : public ::testing::TestWithParam<ModelCase> {};
 TEST_P(GltfAgreement, AccumulationAndMotionPathAgree) {
     STREAK_REQUIRE_SHARED_SCENES();
     const ModelCase& model = GetParam();
+    // The million triangles of the spheres take 92 s under the sanitizers, on the paths ToyCar
+    // (static, dense, its camera moving) and DefaultBudgetsDropNothingOnADenseModel run there.
+    if (test::kSanitized && std::string_view(model.name) == "MetalRoughSpheresNoTextures")
+        GTEST_SKIP() << "ToyCar runs the same paths under the sanitizers";
     GltfOptions options;
     options.frame = model.frame;
     options.shutter = model.shutter;

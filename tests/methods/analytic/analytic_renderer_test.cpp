@@ -4,9 +4,12 @@
 #include "methods/registry.h"
 #include "scene/builtin_scenes.h"
 #include "support/render.h"
+#include "support/sanitized.h"
 #include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
+
+#include <vector>
 
 namespace streak {
 
@@ -36,8 +39,14 @@ TEST(AnalyticRenderer, CrossingQuadsSwapExactlyAtTheCrossing) {
 
 TEST(AnalyticRenderer, AgreesWithTheReferenceOnEveryBuiltinScene) {
     // The issue asks 45 dB against 3000 reference times at full size; these are small renders
-    // against 1024, whose own noise is larger: 42 dB.
-    for (const char* name : {"rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"}) {
+    // against 1024, whose own noise is larger: 42 dB. Under the sanitizers the reference is
+    // most of the time (20-25 s for each of twist, fence, pan and translucent); three scenes run
+    // analytic's paths there (a turning cube, crossing triangles, textured cubes); translucent
+    // runs in ShutterAgreement, twist in CullingTilesAndSamplesChangesNoImage, the thin bars in
+    // CompressionKeepsTheBudgetAndDegradesGracefully.
+    std::vector<const char*> names{"rotating-cube", "crossing", "twist", "fence", "pan", "translucent", "cubes"};
+    if (test::kSanitized) names = {"rotating-cube", "crossing", "cubes"};
+    for (const char* name : names) {
         SCOPED_TRACE(name);
         Scene scene = makeBuiltinScene(name, name == std::string("cubes") ? withOption("n", "150") : OptionMap());
         validateScene(scene);

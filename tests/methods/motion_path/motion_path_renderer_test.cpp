@@ -5,12 +5,14 @@
 #include "scene/builtin_scenes.h"
 #include "scene/scene_loader.h"
 #include "support/render.h"
+#include "support/sanitized.h"
 #include "support/shared_scenes.h"
 #include "support/test_scenes.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <vector>
 
 namespace streak {
 
@@ -106,8 +108,12 @@ TEST(MotionPathRenderer, StaticSceneMatchesTheReference) {
 
 TEST(MotionPathRenderer, AgreesWithTheReferenceOnMovingScenes) {
     // 40 dB is the figure the issue asks of every scene; these are small renders of the
-    // hardest ones (rotation with K = 2 keys, translucency, thin fast bars).
-    for (const char* name : {"rotating-cube", "translucent", "fence"}) {
+    // hardest ones (rotation with K = 2 keys, translucency, thin fast bars). Under the
+    // sanitizers the 1024-time reference is most of the time; motion-path's translucent path
+    // runs there in ShutterAgreement.
+    std::vector<const char*> names{"rotating-cube", "translucent", "fence"};
+    if (test::kSanitized) names = {"rotating-cube", "fence"};
+    for (const char* name : names) {
         SCOPED_TRACE(name);
         Scene scene = makeBuiltinScene(name, OptionMap());
         validateScene(scene);
