@@ -80,7 +80,7 @@ std::vector<std::string> cryptomatteManifestNames(const std::string& manifest) {
 int cryptomatteLayers(int ranks) { return (ranks + 1) / 2; }
 
 std::string cryptomatteChannel(std::string_view typeName, int rank, bool isCoverage) {
-    char layer[8];
+    char layer[12];  // "%02d" of any int fits
     std::snprintf(layer, sizeof layer, "%02d", rank / 2);
     static constexpr const char* kChannels[] = {"r", "g", "b", "a"};  // as the specification and Blender name them
     return std::string(typeName) + layer + "." + kChannels[(rank % 2) * 2 + (isCoverage ? 1 : 0)];

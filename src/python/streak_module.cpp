@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <functional>
 #include <optional>
 #include <string>
@@ -106,7 +107,10 @@ sk::DeepImage deepOf(const py::dict& in) {
         deep.counts.push_back(std::uint32_t(c));
     }
     deep.samples.resize(std::size_t(samples.shape(0)));
-    if (!deep.samples.empty()) std::memcpy(deep.samples.data(), samples.data(), deep.samples.size() * sizeof(sk::DeepImage::Sample));
+    // Sample is six floats, trivially copyable (its default member initializers only make it
+    // non-trivial to construct), so the rows copy as bytes.
+    static_assert(std::is_trivially_copyable_v<sk::DeepImage::Sample> && sizeof(sk::DeepImage::Sample) == 6 * sizeof(float));
+    if (!deep.samples.empty()) std::memcpy(static_cast<void*>(deep.samples.data()), samples.data(), deep.samples.size() * sizeof(sk::DeepImage::Sample));
     if (in.contains("origin") != in.contains("frame")) throw streak::Error("deep image: a region has both 'origin' (x, y) and 'frame' (width, height)");
     if (in.contains("origin")) {
         try {

@@ -307,7 +307,7 @@ TEST(Cli, PassesGoToTheExrAndStitchWithTheRegions) {
         if (rms == std::string::npos) continue;
         const std::string pass = line.substr(0, rms);
         mattes += pass.rfind("CryptoObject ", 0) == 0;
-        if (pass == "alpha" || pass.rfind("Crypto", 0) == 0) EXPECT_LT(std::stod(line.substr(rms + 6)), 0.03) << line;
+        if (pass == "alpha" || pass.rfind("Crypto", 0) == 0) { EXPECT_LT(std::stod(line.substr(rms + 6)), 0.03) << line; }
     }
     EXPECT_GE(mattes, 2) << versus.out;
 }
@@ -332,7 +332,7 @@ TEST(Cli, DeepGoesToItsOwnExrAndFlattensToTheImage) {
             const std::span<const DeepSample> samples = deep.samples(x, y);
             multiLayer += samples.size() > 1;
             for (std::size_t k = 0; k < samples.size(); ++k) {
-                if (k > 0) ASSERT_LE(samples[k - 1].zBack, samples[k].z);
+                if (k > 0) { ASSERT_LE(samples[k - 1].zBack, samples[k].z); }
                 flat += (1.0f - flat.w) * glm::vec4(samples[k].color, samples[k].alpha);
             }
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(flat[c], image.at(x, y)[c], 1e-5f) << x << "," << y;

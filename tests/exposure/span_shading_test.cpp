@@ -302,7 +302,7 @@ TEST(ShadeTimeSpan, AnUntexturedMaterialSkipsTheFootprintAndUnlitAllButTheMiddle
         EXPECT_EQ(fast.alpha, full.alpha) << "mode " << int(mode);
         EXPECT_EQ(told.footprints, 0) << "mode " << int(mode);
         EXPECT_GT(untold.footprints, 0) << "mode " << int(mode);
-        if (mode == ShadingMode::Unlit) EXPECT_EQ(told.evaluations, 1);
+        if (mode == ShadingMode::Unlit) { EXPECT_EQ(told.evaluations, 1); }
     }
     // The vertex colour and opacity are the middle's (t = 0.4), times the material's.
     ScriptedPoint point;

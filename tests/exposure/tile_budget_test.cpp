@@ -32,7 +32,7 @@ TEST(RenderWithinShare, HalvesUntilEveryPieceFitsAndCoversTheTileOnce) {
         EXPECT_TRUE(std::all_of(rendered.begin(), rendered.end(), [](int n) { return n == 1; }));
         // Every refused attempt was split in two, and the halves were attempted.
         EXPECT_EQ(attempts, 2 * counters.splits + 1);
-        if (fits >= area(tile)) EXPECT_EQ(counters.splits, 0);
+        if (fits >= area(tile)) { EXPECT_EQ(counters.splits, 0); }
         // Halving across the longer side: 208 pixels need at least ceil(208 / fits) pieces and
         // get under twice that.
         const int pieces = int(counters.splits) + 1;

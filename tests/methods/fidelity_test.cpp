@@ -125,7 +125,7 @@ TEST_P(TextureBoxIntegral, ConvergesToThePixelsBoxIntegral) {
         std::printf("%s aa %d: worst %.4f\n", method.c_str(), n, worst);
         EXPECT_LT(worst, 0.5 * previous) << method << " aa " << n << ": more samples must converge";
         previous = worst;
-        if (n == 8) EXPECT_LT(worst, 0.01) << method;
+        if (n == 8) { EXPECT_LT(worst, 0.01) << method; }
     }
 }
 

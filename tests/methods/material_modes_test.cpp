@@ -82,7 +82,7 @@ TEST(MaterialModes, MovingMaskAveragesToCoverage) {
     for (const MethodInfo& method : registeredMethods()) {
         if (!test::runsHere(method.name)) continue;
         SCOPED_TRACE(std::string(method.name));
-        if (createRenderer(method.name, {})->animationTrail()) continue;  // a trail (blur-shell), not a shutter average
+        if (createRenderer(method.name, OptionMap{})->animationTrail()) continue;  // a trail (blur-shell), not a shutter average
         // The games' filter takes its velocities from the opaque surface behind a translucent
         // one: its known translucency failure (tests/methods/post_filter, BENCHMARKS).
         if (method.name.starts_with("post-filter")) continue;

@@ -78,8 +78,8 @@ void expectPasses(const std::string& method, const OptionMap& options, float cov
                 continue;
             }
             EXPECT_NEAR(z, (2.0f * e.sweeper + 3.0f * e.wall) / covered, depthTolerance);
-            if (e.sweeper > coverageTolerance) EXPECT_NEAR(zMin, 2.0f, 1e-4f);
-            if (e.sweeper == 0.0f) EXPECT_NEAR(zMin, 3.0f, 1e-4f);
+            if (e.sweeper > coverageTolerance) { EXPECT_NEAR(zMin, 2.0f, 1e-4f); }
+            if (e.sweeper == 0.0f) { EXPECT_NEAR(zMin, 3.0f, 1e-4f); }
         }
 }
 
@@ -145,8 +145,8 @@ glm::vec4 flattenDeep(std::span<const DeepSample> samples) {
     float alpha = 0.0f;
     for (std::size_t k = 0; k < samples.size(); ++k) {
         EXPECT_LE(samples[k].z, samples[k].zBack);
-        if (k > 0) EXPECT_LT(samples[k - 1].z, samples[k].z);
-        if (k > 0) EXPECT_LE(samples[k - 1].zBack, samples[k].z);
+        if (k > 0) { EXPECT_LT(samples[k - 1].z, samples[k].z); }
+        if (k > 0) { EXPECT_LE(samples[k - 1].zBack, samples[k].z); }
         EXPECT_GE(samples[k].alpha, 0.0f);
         EXPECT_LE(samples[k].alpha, 1.0f);
         color += (1.0f - alpha) * samples[k].color;
@@ -270,7 +270,7 @@ TEST(PassesMethods, TranslucentDeepFlattensToTheImage) {
             // covers: a sample of that share, as its colour has.)
             const std::span<const DeepSample> samples = image.deep()->samples(px, 1);
             ASSERT_GE(samples.size(), 2u) << px;
-            if (samples.size() > 2) EXPECT_LT((1.0f - samples[0].alpha) * (1.0f - samples[1].alpha), 1e-5f);
+            if (samples.size() > 2) { EXPECT_LT((1.0f - samples[0].alpha) * (1.0f - samples[1].alpha), 1e-5f); }
             EXPECT_NEAR(samples[0].z, 2.0f, 1e-4f);
             EXPECT_NEAR(samples[0].alpha, 0.4f * sweeper, 1e-5f) << px;
             EXPECT_NEAR(samples[1].z, behind, 1e-4f * behind);

@@ -114,7 +114,7 @@ TEST(ShutterMethods, RollingShutterSlantsAMovingBarByTheRowDelay) {
                     // Two edges cross each pixel's window: twice the one-edge bound.
                     EXPECT_NEAR(image.at(x, y).x, std::max(0.0, hi - lo) / d, 2.0f * m.tolerance) << "pixel " << x << ", row " << y;
                 }
-                if (d < 1.0f) EXPECT_NEAR(rowCentroid(image, y), 5.0 + 40.0 * (start + 0.5 * d), 0.5) << "row " << y;
+                if (d < 1.0f) { EXPECT_NEAR(rowCentroid(image, y), 5.0 + 40.0 * (start + 0.5 * d), 0.5) << "row " << y; }
             }
         }
     }

@@ -190,7 +190,7 @@ TEST(BlurShellRenderer, NeedsTheTrailLoadedWithOneKeyPerUpdate) {
     ASSERT_TRUE(trail.has_value());
     EXPECT_DOUBLE_EQ(trail->lengthSeconds, 0.5);
     EXPECT_EQ(trail->keys, 21);
-    EXPECT_FALSE(createRenderer("accumulation", {})->animationTrail().has_value());
+    EXPECT_FALSE(createRenderer("accumulation", OptionMap{})->animationTrail().has_value());
 }
 
 }  // namespace

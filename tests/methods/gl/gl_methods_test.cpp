@@ -256,13 +256,13 @@ TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
                 std::printf("%s: gl vs cpu %.1f dB, %g dispatches\n", what.c_str(), psnr(gl, cpu), gpuStats.counter("pixel_shading_dispatches"));
                 EXPECT_GE(psnr(gl, cpu), 80.0) << what;
                 ASSERT_GT(cpuStats.counter("visible_pieces"), 0.0) << what;
-                if (std::string(cells) == "2") EXPECT_LT(cpuStats.counter("shaded_spans"), cpuStats.counter("visible_pieces")) << what;  // shared
-                if (std::string(name) == "twist") EXPECT_GT(cpuStats.counter("still_sample_lookups"), 0.0) << what;  // its still backdrop
+                if (std::string(cells) == "2") { EXPECT_LT(cpuStats.counter("shaded_spans"), cpuStats.counter("visible_pieces")) << what; }  // shared
+                if (std::string(name) == "twist") { EXPECT_GT(cpuStats.counter("still_sample_lookups"), 0.0) << what; }  // its still backdrop
                 for (const char* counter : {"visible_pieces", "shaded_spans", "visible_triangles_per_pixel", "still_sample_lookups"})
                     EXPECT_NEAR(gpuStats.counter(counter), cpuStats.counter(counter), 1e-3 * cpuStats.counter(counter)) << counter << " " << what;
                 EXPECT_EQ(gpuStats.counter("piece_overflow_samples"), 0.0) << what;
                 EXPECT_EQ(gpuStats.counter("piece_overflow_pixels"), 0.0) << what;
-                if (std::string(name) == "rotating-cube") EXPECT_GT(gpuStats.counter("pixel_shading_dispatches"), 1.0) << what;
+                if (std::string(name) == "rotating-cube") { EXPECT_GT(gpuStats.counter("pixel_shading_dispatches"), 1.0) << what; }
             }
     }
     // A still cluster is shaded once per piece within one dispatch: at --aa 8 twist's backdrop
@@ -407,8 +407,8 @@ TEST_P(PostFilterGlAgreement, MatchesCpuPostFilter) {
     const auto& [name, aa] = GetParam();
     const Scene scene = builtin(name);
     RenderStats stats;
-    const Image gl = test::render("post-filter-gl", scene, 96, 72, {}, &stats, ShadingMode::Phong, aa);
-    const Image cpu = test::render("post-filter", scene, 96, 72, {}, nullptr, ShadingMode::Phong, aa, true);
+    const Image gl = test::render("post-filter-gl", scene, 96, 72, OptionMap{}, &stats, ShadingMode::Phong, aa);
+    const Image cpu = test::render("post-filter", scene, 96, 72, OptionMap{}, nullptr, ShadingMode::Phong, aa, true);
     EXPECT_GE(psnr(gl, cpu), 45.0);
     const Image instant = test::render("accumulation", scene, 96, 72, test::withOption("samples", "1"), nullptr, ShadingMode::Phong, aa, true);
     EXPECT_LT(psnr(cpu, instant), 40.0) << "the filter should blur this scene";

@@ -44,7 +44,7 @@ exposure::ShadingSite siteOf(std::size_t k, const glm::dvec2& ndc, int width, in
 class SpanShadingGlsl : public testing::TestWithParam<std::tuple<std::string, exposure::SpanTextureFilter>> {};
 
 TEST_P(SpanShadingGlsl, MatchesCpuSpanShading) {
-    const Scene scene = makeBuiltinScene(std::get<0>(GetParam()), {});
+    const Scene scene = makeBuiltinScene(std::get<0>(GetParam()), OptionMap{});
     const int width = 96, height = 72, curveSegments = 4;
     const ShadingMode shading = ShadingMode::Phong;
     exposure::SpanShadingSettings settings;

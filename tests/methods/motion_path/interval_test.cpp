@@ -393,7 +393,7 @@ TEST(MergedIntervals, RandomPolylinesResolveToTheExactNearest) {
             spanSum[s.interval] += s.weight;
             const double t = 0.5 * (double(s.t0) + s.t1);
             const std::size_t k = std::size_t(std::upper_bound(sweep.times.begin(), sweep.times.end(), t) - sweep.times.begin()) - 1;
-            if (s.t1 - s.t0 > 1e-4f) EXPECT_EQ(sweep.nearest[k], int(list[s.interval].source)) << "trial " << trial << " at " << t;
+            if (s.t1 - s.t0 > 1e-4f) { EXPECT_EQ(sweep.nearest[k], int(list[s.interval].source)) << "trial " << trial << " at " << t; }
         }
         for (std::size_t i = 0; i < list.size(); ++i) EXPECT_NEAR(spanSum[i], weights[i], 1e-5) << "trial " << trial;
     }

@@ -28,7 +28,7 @@ TEST(PostFilter, AStaticSceneIsThePinholeRender) {
         still.set(std::string(spec) == "rotating-cube" ? "speed" : std::string(spec) == "spin" ? "angle" : "travel", "0");
         const Scene scene = test::validBuiltin(spec, still);
         RenderStats stats;
-        const Image filtered = test::render("post-filter", scene, 96, 72, {}, &stats, ShadingMode::Phong, 2);
+        const Image filtered = test::render("post-filter", scene, 96, 72, OptionMap{}, &stats, ShadingMode::Phong, 2);
         const Image pinhole = test::render("accumulation", scene, 96, 72, test::withOption("samples", "1"), nullptr, ShadingMode::Phong, 2);
         EXPECT_GE(psnr(filtered, pinhole), 60.0) << spec;
         EXPECT_EQ(stats.counter("moving_pixels"), 0.0) << spec;
@@ -52,7 +52,7 @@ TEST(PostFilter, ATranslatingQuadGivesTheBoxFilteredRamp) {
     };
     test::addMovingQuad(scene, white, quad(20.0f, 60.0f), quad(36.0f, 76.0f));
     validateScene(scene);
-    const Image filtered = test::render("post-filter", scene, 96, 8, {}, nullptr, ShadingMode::Unlit);
+    const Image filtered = test::render("post-filter", scene, 96, 8, OptionMap{}, nullptr, ShadingMode::Unlit);
     const Image centre = test::render("accumulation", scene, 96, 8, test::withOption("samples", "1"), nullptr, ShadingMode::Unlit);
     double worst = 0.0, mean = 0.0, centreWorst = 0.0, centreMean = 0.0;
     for (int x = 0; x < 96; ++x) {
