@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -647,9 +648,17 @@ private:
         return m_textures[key] = std::uint32_t(m_scene.textures.size() - 1);
     }
 
+    // One instance's vertices (or normals) at one time. Poses share them: an instance whose
+    // inputs did not change since the previous pose (a still part, or a whole still scene) holds
+    // the previous pose's vertices, not a copy. On the million-triangle still spheres the copies
+    // into the second key and the middle pose, and the fresh pages they took, were most of
+    // poseAt's time.
+    using SharedVertices = std::shared_ptr<const std::vector<glm::vec3>>;
+    static SharedVertices share(std::vector<glm::vec3>&& vertices) { return std::make_shared<const std::vector<glm::vec3>>(std::move(vertices)); }
+
     // The vertices of every instance at one animation time, and what they were computed from.
     struct PosedInstances {
-        std::vector<std::vector<glm::vec3>> positions, normals;  ///< per instance
+        std::vector<SharedVertices> positions, normals;  ///< per instance
         gltf::NodePoses nodes;
         std::map<int, std::vector<glm::mat4>> joints;            ///< by skin
     };
@@ -669,7 +678,10 @@ private:
             const std::size_t n = instance.data->geometry.numVertices(), node = instance.node;
             if (instance.cacheFirst) {
                 // The cache holds the deformation: skin and morph targets are not applied.
-                cachedPose(instance, time, out.nodes.worldFromNode[node], out.positions[i], out.normals[i]);
+                std::vector<glm::vec3> positions, normals;
+                cachedPose(instance, time, out.nodes.worldFromNode[node], positions, normals);
+                out.positions[i] = share(std::move(positions));
+                out.normals[i] = share(std::move(normals));
                 continue;
             }
             const bool isSkinned = instance.skin >= 0 && instance.data->geometry.isSkinned();
@@ -681,13 +693,14 @@ private:
                 out.normals[i] = previous->normals[i];
                 continue;
             }
-            out.positions[i].resize(n);
-            if (!instance.data->geometry.normals.empty()) out.normals[i].resize(n);
+            std::vector<glm::vec3> positions(n), normals(instance.data->geometry.normals.empty() ? 0 : n);
             const std::span<const glm::mat4> jointMatrices =
                 isSkinned ? std::span<const glm::mat4>(out.joints[instance.skin]) : std::span<const glm::mat4>();
             gltf::deformPrimitive(instance.data->geometry, out.nodes.weights[node], out.nodes.worldFromNode[node], jointMatrices,
-                                  out.positions[i], out.normals[i]);
-            addVelocities(*instance.data, time, out.nodes.worldFromNode[node], out.positions[i]);
+                                  positions, normals);
+            addVelocities(*instance.data, time, out.nodes.worldFromNode[node], positions);
+            out.positions[i] = share(std::move(positions));
+            out.normals[i] = share(std::move(normals));
         }
         return out;
     }
@@ -742,10 +755,12 @@ private:
                 weight[std::size_t(j)] = float(w);
             }
             for (std::size_t i = 0; i < m_instances.size(); ++i) {
-                const std::vector<glm::vec3>& m = middles[std::size_t(k)].positions[i];
+                const std::vector<glm::vec3>& m = *middles[std::size_t(k)].positions[i];
+                std::array<const glm::vec3*, 4> key{};
+                for (int j = 0; j <= order; ++j) key[std::size_t(j)] = keys[std::size_t(first + j)].positions[i]->data();
                 for (std::size_t v = 0; v < m.size(); ++v) {
-                    glm::vec3 path = weight[0] * keys[std::size_t(first)].positions[i][v];
-                    for (int j = 1; j <= order; ++j) path += weight[std::size_t(j)] * keys[std::size_t(first + j)].positions[i][v];
+                    glm::vec3 path = weight[0] * key[0][v];
+                    for (int j = 1; j <= order; ++j) path += weight[std::size_t(j)] * key[std::size_t(j)][v];
                     const glm::vec4 lin = clipFromWorld * glm::vec4(path, 1.0f);
                     const glm::vec4 truth = clipFromWorld * glm::vec4(m[v], 1.0f);
                     if (!(lin.w > m_scene.camera.zNear) || !(truth.w > m_scene.camera.zNear)) continue;
@@ -779,8 +794,10 @@ private:
         m_closePoses = keys.back().nodes;
         const bool isAdaptive = m_options.motionKeys == 0;
         std::optional<KeyDeviation> deviation;
+        bool meshesHoldKeys = false;  // the scene's meshes are already these keys (written once, not again)
         if (isAdaptive && m_options.shutter > 0.0 && !m_instances.empty()) {
             writeMeshes(keys);
+            meshesHoldKeys = true;
             placeCamera();  // the deviation is measured through it
             const std::size_t cap = std::size_t(std::clamp(m_options.maxMotionKeys, 2, kMaxMotionKeys));
             while (true) {
@@ -796,6 +813,7 @@ private:
                     if (k + 1 < numKeys) refined.push_back(std::move(middles[std::size_t(k)]));
                 }
                 keys = std::move(refined);
+                meshesHoldKeys = false;
             }
             // Keys on the animation's own: where its keyframes inside the shutter fall on an even
             // grid of fewer pieces than the halving found (or the halving missed the tolerance),
@@ -813,11 +831,12 @@ private:
                 const KeyDeviation gridDeviation = keyDeviation(grid, middles);
                 if (gridDeviation.worst() <= m_options.keyTolerancePixels) {
                     keys = std::move(grid), deviation = gridDeviation;
+                    meshesHoldKeys = false;
                     if (m_stats) m_stats->setInfo("motion_keys_on", "keyframes");
                 }
             }
         }
-        writeMeshes(keys);
+        if (!meshesHoldKeys) writeMeshes(keys);
         if (m_stats) {
             m_stats->setCounter("motion_keys", double(keys.size()));
             if (deviation) {
@@ -909,8 +928,8 @@ private:
             mesh.positions.reserve(n * std::size_t(numKeys));
             if (!data.geometry.normals.empty()) mesh.normals.reserve(n * std::size_t(numKeys));
             for (const PosedInstances& key : keys) {
-                mesh.positions.insert(mesh.positions.end(), key.positions[i].begin(), key.positions[i].end());
-                if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i].begin(), key.normals[i].end());
+                mesh.positions.insert(mesh.positions.end(), key.positions[i]->begin(), key.positions[i]->end());
+                if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i]->begin(), key.normals[i]->end());
             }
             mesh.uvs = data.uvs;
             mesh.colors = data.colors;
