@@ -56,7 +56,7 @@ struct PrimitiveData {
 struct Instance {
     std::uint32_t node = 0;
     int skin = -1;
-    const PrimitiveData* data = nullptr;
+    PrimitiveData* data = nullptr;  ///< shared by the instances of one primitive (writeMeshes may take its arrays)
     std::string name;
     std::optional<std::size_t> cacheFirst;  ///< moved by the point cache: its first point there
 };
@@ -502,7 +502,7 @@ private:
         return out;
     }
 
-    const PrimitiveData& primitiveData(int meshIndex, int primitiveIndex) {
+    PrimitiveData& primitiveData(int meshIndex, int primitiveIndex) {
         const auto key = std::make_pair(meshIndex, primitiveIndex);
         if (auto it = m_primitives.find(key); it != m_primitives.end()) return it->second;
         const tinygltf::Primitive& primitive = m_model.meshes[std::size_t(meshIndex)].primitives[std::size_t(primitiveIndex)];
@@ -910,34 +910,53 @@ private:
         }
     }
 
-    // One streak Mesh per instance from the key poses.
+    // One streak Mesh per instance from the key poses. The first write makes the meshes; a later
+    // one (the key chooser refined the keys after placing the camera) replaces only their keys.
+    // A primitive only one instance uses hands its mesh its triangles, uvs and colours rather than
+    // a copy: nothing reads them from the primitive afterwards, and on the million-triangle spheres
+    // (102 primitives, each placed once) the triangles alone are 12 MB of fresh pages.
     void writeMeshes(const std::vector<PosedInstances>& keys) {
         const int numKeys = int(keys.size());
-        m_scene.meshes.clear();
+        const bool isFirst = !m_meshesWritten;
+        m_meshesWritten = true;
+        std::map<const PrimitiveData*, int> uses;
+        if (isFirst) {
+            m_scene.meshes.clear();
+            m_scene.meshes.resize(m_instances.size());
+            for (const Instance& instance : m_instances) ++uses[instance.data];
+        }
         // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding clockwise;
         // flip it back so that front faces stay counter-clockwise. Judged at mid-shutter.
-        const gltf::NodePoses middle = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, keyTime(1, 3));
+        const gltf::NodePoses middle = isFirst ? gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, keyTime(1, 3)) : gltf::NodePoses{};
         for (std::size_t i = 0; i < m_instances.size(); ++i) {
             const Instance& instance = m_instances[i];
-            const PrimitiveData& data = *instance.data;
+            PrimitiveData& data = *instance.data;
             const std::size_t n = data.geometry.numVertices();
-            Mesh mesh;
-            mesh.name = instance.name;
+            Mesh& mesh = m_scene.meshes[i];
             mesh.numKeys = numKeys;
-            mesh.interpolation = MotionInterpolation::PiecewiseLinear;
+            mesh.positions.clear();
+            mesh.normals.clear();
             mesh.positions.reserve(n * std::size_t(numKeys));
             if (!data.geometry.normals.empty()) mesh.normals.reserve(n * std::size_t(numKeys));
             for (const PosedInstances& key : keys) {
                 mesh.positions.insert(mesh.positions.end(), key.positions[i]->begin(), key.positions[i]->end());
                 if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i]->begin(), key.normals[i]->end());
             }
-            mesh.uvs = data.uvs;
-            mesh.colors = data.colors;
-            mesh.triangles = data.triangles;
+            if (!isFirst) continue;
+            mesh.name = instance.name;
+            mesh.interpolation = MotionInterpolation::PiecewiseLinear;
+            if (uses[instance.data] == 1) {
+                mesh.uvs = std::move(data.uvs);
+                mesh.colors = std::move(data.colors);
+                mesh.triangles = std::move(data.triangles);
+            } else {
+                mesh.uvs = data.uvs;
+                mesh.colors = data.colors;
+                mesh.triangles = data.triangles;
+            }
             mesh.material = data.material;
             if (isMirrored(instance, middle.worldFromNode[instance.node]))
                 for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
-            m_scene.meshes.push_back(std::move(mesh));
         }
     }
 
@@ -1035,6 +1054,7 @@ private:
     std::optional<gltf::Animation> m_animation;
     std::map<int, gltf::Skin> m_skins;                               ///< by glTF skin index
     std::map<std::pair<int, int>, PrimitiveData> m_primitives;       ///< by (mesh, primitive)
+    bool m_meshesWritten = false;                                    ///< writeMeshes has made m_scene.meshes
     std::map<int, MaterialInfo> m_materials;                         ///< by glTF material index (-1: default)
     std::map<std::tuple<int, WrapMode, WrapMode>, std::uint32_t> m_textures;  ///< by (image, wraps)
     std::vector<Instance> m_instances;

@@ -470,6 +470,38 @@ double quarterTurnScreenError(const Scene& scene, float aspect) {
 
 }  // namespace
 
+TEST(GltfLoader, APrimitivePlacedByTwoNodesGivesEachMeshAllItsTrianglesAndColours) {
+    // quarterTurn()'s triangle, with vertex colours, placed a second time by a still mirrored
+    // node. The turn makes the default keys refine after the meshes were first written to place
+    // the camera, so the meshes are written twice. A mesh may take its primitive's arrays only
+    // where one node places it: here both must keep the whole of them, the mirrored one flipped.
+    test::GltfBuilder b = quarterTurn();
+    b.json()["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = b.addFloats({1, 0, 0, 0, 1, 0, 0, 0, 1}, "VEC3", 3);
+    b.json()["nodes"].push_back({{"mesh", 0}, {"scale", {-1, 1, 1}}, {"translation", {3, 0, 0}}});
+    b.addToScene(1);
+    GltfOptions options;
+    options.shutter = 24;
+    RenderStats stats;
+    const Scene scene = load(b, options, &stats);
+    ASSERT_EQ(scene.meshes.size(), 2u);
+    const Mesh& turning = scene.meshes[0];
+    const Mesh& mirrored = scene.meshes[1];
+    ASSERT_GT(turning.numKeys, 2);  // refined after the first write
+    EXPECT_EQ(stats.counter("motion_keys"), double(turning.numKeys));
+    EXPECT_EQ(mirrored.numKeys, turning.numKeys);
+    EXPECT_EQ(turning.triangles, std::vector<glm::uvec3>{glm::uvec3(0, 1, 2)});
+    EXPECT_EQ(mirrored.triangles, std::vector<glm::uvec3>{glm::uvec3(0, 2, 1)});
+    const std::vector<glm::vec4> colours = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}};
+    EXPECT_EQ(turning.colors, colours);
+    EXPECT_EQ(mirrored.colors, colours);
+    for (const Mesh* mesh : {&turning, &mirrored}) EXPECT_EQ(mesh->positions.size(), 3u * std::size_t(mesh->numKeys));
+    // Every key holds its own time's pose: the turning vertex (1, 0, 0) ends at (0, 1, 0); the
+    // still mirrored one stays at (3 - 1, 0, 0).
+    expectNear(turning.keyPositions(0)[1], {1, 0, 0});
+    expectNear(turning.keyPositions(turning.numKeys - 1)[1], {0, 1, 0});
+    for (int k = 0; k < mirrored.numKeys; ++k) expectNear(mirrored.keyPositions(k)[1], {2, 0, 0});
+}
+
 TEST(GltfLoader, DefaultKeysFollowARotationWithinTheTolerance) {
     // A node turning 90 degrees about z over 1 s (LINEAR: constant angular speed), the whole
     // second in the shutter. Vertex (1, 0, 0) truly sits at (cos 90t, sin 90t, 0); the chosen
