@@ -11,10 +11,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <type_traits>
 #include <functional>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 namespace py = pybind11;
 namespace sk = streak::api;

@@ -56,7 +56,7 @@ struct PrimitiveData {
 struct Instance {
     std::uint32_t node = 0;
     int skin = -1;
-    PrimitiveData* data = nullptr;  ///< shared by the instances of one primitive (writeMeshes may take its arrays)
+    PrimitiveData* data = nullptr;  ///< shared by the instances of one primitive (makeMeshes may take its arrays)
     std::string name;
     std::optional<std::size_t> cacheFirst;  ///< moved by the point cache: its first point there
 };
@@ -438,7 +438,7 @@ private:
     }
 
     // Whether the node's transform mirrors the instance's vertices (negative determinant): glTF
-    // 3.7.4 then turns the winding clockwise, and writeMeshes flips it back. A skinned mesh's
+    // 3.7.4 then turns the winding clockwise, and makeMeshes flips it back. A skinned mesh's
     // joints place it instead, unless a point cache in the node's space does; a cache in world
     // space holds what the animation made, so it follows the animation's rule.
     bool isMirrored(const Instance& instance, const glm::mat4& worldFromNode) const {
@@ -449,7 +449,7 @@ private:
 
     // The instance's vertices from the point cache at `time` (world space, or through the node's
     // world transform), and normals of its triangles as they are drawn (counter-clockwise in
-    // front, after writeMeshes' flip), area-weighted, where it has normals.
+    // front, after makeMeshes' flip), area-weighted, where it has normals.
     void cachedPose(const Instance& instance, float time, const glm::mat4& worldFromNode, std::vector<glm::vec3>& positions,
                     std::vector<glm::vec3>& normals) const {
         const std::size_t n = instance.data->geometry.numVertices();
@@ -794,10 +794,11 @@ private:
         m_closePoses = keys.back().nodes;
         const bool isAdaptive = m_options.motionKeys == 0;
         std::optional<KeyDeviation> deviation;
-        bool meshesHoldKeys = false;  // the scene's meshes are already these keys (written once, not again)
+        // The meshes are made once; where the keys change after that, only the keys are written again.
+        bool isMade = false, holdsKeys = false;
         if (isAdaptive && m_options.shutter > 0.0 && !m_instances.empty()) {
-            writeMeshes(keys);
-            meshesHoldKeys = true;
+            makeMeshes(keys);
+            isMade = holdsKeys = true;
             placeCamera();  // the deviation is measured through it
             const std::size_t cap = std::size_t(std::clamp(m_options.maxMotionKeys, 2, kMaxMotionKeys));
             while (true) {
@@ -813,7 +814,7 @@ private:
                     if (k + 1 < numKeys) refined.push_back(std::move(middles[std::size_t(k)]));
                 }
                 keys = std::move(refined);
-                meshesHoldKeys = false;
+                holdsKeys = false;
             }
             // Keys on the animation's own: where its keyframes inside the shutter fall on an even
             // grid of fewer pieces than the halving found (or the halving missed the tolerance),
@@ -831,12 +832,13 @@ private:
                 const KeyDeviation gridDeviation = keyDeviation(grid, middles);
                 if (gridDeviation.worst() <= m_options.keyTolerancePixels) {
                     keys = std::move(grid), deviation = gridDeviation;
-                    meshesHoldKeys = false;
+                    holdsKeys = false;
                     if (m_stats) m_stats->setInfo("motion_keys_on", "keyframes");
                 }
             }
         }
-        if (!meshesHoldKeys) writeMeshes(keys);
+        if (!isMade) makeMeshes(keys);
+        else if (!holdsKeys) writeKeys(keys);
         if (m_stats) {
             m_stats->setCounter("motion_keys", double(keys.size()));
             if (deviation) {
@@ -910,39 +912,22 @@ private:
         }
     }
 
-    // One streak Mesh per instance from the key poses. The first write makes the meshes; a later
-    // one (the key chooser refined the keys after placing the camera) replaces only their keys.
-    // A primitive only one instance uses hands its mesh its triangles, uvs and colours rather than
-    // a copy: nothing reads them from the primitive afterwards, and on the million-triangle spheres
-    // (102 primitives, each placed once) the triangles alone are 12 MB of fresh pages.
-    void writeMeshes(const std::vector<PosedInstances>& keys) {
-        const int numKeys = int(keys.size());
-        const bool isFirst = !m_meshesWritten;
-        m_meshesWritten = true;
+    // One streak Mesh per instance: what the keys do not change (name, triangles, uvs, colours,
+    // material, winding), then the keys (writeKeys). A primitive only one instance uses hands its
+    // mesh its triangles, uvs and colours rather than a copy: nothing reads them from the
+    // primitive afterwards, and on the million-triangle spheres (102 primitives, each placed
+    // once) the triangles alone are 12 MB of fresh pages.
+    void makeMeshes(const std::vector<PosedInstances>& keys) {
+        m_scene.meshes.assign(m_instances.size(), Mesh{});
         std::map<const PrimitiveData*, int> uses;
-        if (isFirst) {
-            m_scene.meshes.clear();
-            m_scene.meshes.resize(m_instances.size());
-            for (const Instance& instance : m_instances) ++uses[instance.data];
-        }
+        for (const Instance& instance : m_instances) ++uses[instance.data];
         // glTF 3.7.4: a mirroring transform (negative determinant) turns the winding clockwise;
         // flip it back so that front faces stay counter-clockwise. Judged at mid-shutter.
-        const gltf::NodePoses middle = isFirst ? gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, keyTime(1, 3)) : gltf::NodePoses{};
+        const gltf::NodePoses middle = gltf::poseNodes(m_nodes, m_animation ? &*m_animation : nullptr, keyTime(1, 3));
         for (std::size_t i = 0; i < m_instances.size(); ++i) {
             const Instance& instance = m_instances[i];
             PrimitiveData& data = *instance.data;
-            const std::size_t n = data.geometry.numVertices();
             Mesh& mesh = m_scene.meshes[i];
-            mesh.numKeys = numKeys;
-            mesh.positions.clear();
-            mesh.normals.clear();
-            mesh.positions.reserve(n * std::size_t(numKeys));
-            if (!data.geometry.normals.empty()) mesh.normals.reserve(n * std::size_t(numKeys));
-            for (const PosedInstances& key : keys) {
-                mesh.positions.insert(mesh.positions.end(), key.positions[i]->begin(), key.positions[i]->end());
-                if (!data.geometry.normals.empty()) mesh.normals.insert(mesh.normals.end(), key.normals[i]->begin(), key.normals[i]->end());
-            }
-            if (!isFirst) continue;
             mesh.name = instance.name;
             mesh.interpolation = MotionInterpolation::PiecewiseLinear;
             if (uses[instance.data] == 1) {
@@ -957,6 +942,26 @@ private:
             mesh.material = data.material;
             if (isMirrored(instance, middle.worldFromNode[instance.node]))
                 for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);
+        }
+        writeKeys(keys);
+    }
+
+    // The meshes' keys (positions and normals, key after key) from the key poses.
+    void writeKeys(const std::vector<PosedInstances>& keys) {
+        const int numKeys = int(keys.size());
+        for (std::size_t i = 0; i < m_instances.size(); ++i) {
+            const std::size_t n = m_instances[i].data->geometry.numVertices();
+            const bool hasNormals = !m_instances[i].data->geometry.normals.empty();
+            Mesh& mesh = m_scene.meshes[i];
+            mesh.numKeys = numKeys;
+            mesh.positions.clear();
+            mesh.normals.clear();
+            mesh.positions.reserve(n * std::size_t(numKeys));
+            if (hasNormals) mesh.normals.reserve(n * std::size_t(numKeys));
+            for (const PosedInstances& key : keys) {
+                mesh.positions.insert(mesh.positions.end(), key.positions[i]->begin(), key.positions[i]->end());
+                if (hasNormals) mesh.normals.insert(mesh.normals.end(), key.normals[i]->begin(), key.normals[i]->end());
+            }
         }
     }
 
@@ -1054,7 +1059,6 @@ private:
     std::optional<gltf::Animation> m_animation;
     std::map<int, gltf::Skin> m_skins;                               ///< by glTF skin index
     std::map<std::pair<int, int>, PrimitiveData> m_primitives;       ///< by (mesh, primitive)
-    bool m_meshesWritten = false;                                    ///< writeMeshes has made m_scene.meshes
     std::map<int, MaterialInfo> m_materials;                         ///< by glTF material index (-1: default)
     std::map<std::tuple<int, WrapMode, WrapMode>, std::uint32_t> m_textures;  ///< by (image, wraps)
     std::vector<Instance> m_instances;
