@@ -70,7 +70,7 @@ CurvedGeometry::CurvedGeometry(const Scene& scene, float aspect, int cameraOrder
     tbb::parallel_for(std::size_t(0), m_segments.size(), [&](std::size_t p) {
         const auto tri = std::uint32_t(p / std::size_t(pieces));
         const int piece = int(p % std::size_t(pieces));
-        CurvedSegment& s = m_segments[p];
+        CurvedSegment& s = constructAt(m_segments, p);
         s.triangle = tri;
         s.t0 = float(piece) / float(pieces);
         s.t1 = float(piece + 1) / float(pieces);

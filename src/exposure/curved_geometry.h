@@ -60,7 +60,7 @@ private:
     FlatGeometry m_flat;
     int m_numPieces = 1, m_order = 1;
     bool m_isFitted = false;
-    LargeVector<CurvedSegment> m_segments;  ///< a dense frame's largest array: in huge pages (LargeVector)
+    LargeBuffer<CurvedSegment> m_segments;  ///< a dense frame's largest array: in huge pages (LargeVector)
 };
 
 }  // namespace streak::exposure

@@ -48,10 +48,10 @@ bool EarlyCull::mayCoverAStretch(const TriangleSegment& segment, const raster::V
     return !(least * double(kShortestStretch) > size * share);
 }
 
-LargeVector<float> EarlyCull::occluderDepths(const SegmentedGeometry& geometry, const raster::Viewport& viewport) {
+LargeBuffer<float> EarlyCull::occluderDepths(const SegmentedGeometry& geometry, const raster::Viewport& viewport) {
     const std::span<const TriangleSegment> segments = geometry.segments();
     const Scene& scene = geometry.scene();
-    LargeVector<float> depths(segments.size());
+    LargeBuffer<float> depths(segments.size());
     tbb::parallel_for(std::size_t(0), segments.size(), [&](std::size_t i) {
         const TriangleSegment& s = segments[i];
         float farthest = std::numeric_limits<float>::infinity();
@@ -60,7 +60,7 @@ LargeVector<float> EarlyCull::occluderDepths(const SegmentedGeometry& geometry, 
             for (const auto* corners : {&s.clip0, &s.clip1})
                 for (const glm::vec4& c : *corners) farthest = std::max(farthest, c.w);
         }
-        depths[i] = farthest;
+        constructAt(depths, i) = farthest;
     });
     return depths;
 }

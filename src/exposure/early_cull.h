@@ -134,7 +134,7 @@ public:
     static bool mayCoverAStretch(const TriangleSegment& segment, const raster::Viewport& viewport);
     // Per segment of `geometry`: the farthest view depth it may hide others from (its farthest
     // corner's), where it may cover a stretch and is opaque; infinity elsewhere.
-    static LargeVector<float> occluderDepths(const SegmentedGeometry& geometry, const raster::Viewport& viewport);
+    static LargeBuffer<float> occluderDepths(const SegmentedGeometry& geometry, const raster::Viewport& viewport);
     // Whether the cull may hide anything among a tile's segments `items`: some segment lies
     // wholly beyond what another may hide it from. Where none does (a tile of a dense mesh
     // under a camera move, whose triangles sweep its samples in slivers), the tile is not

@@ -131,7 +131,7 @@ SegmentedGeometry::SegmentedGeometry(const Scene& scene, const raster::Viewport&
         for (std::size_t p = range.begin(); p != range.end(); ++p) {
             const std::uint32_t tri = std::uint32_t(p / std::size_t(n));
             const std::size_t k = p % std::size_t(n);
-            TriangleSegment& s = m_segments[p];
+            TriangleSegment& s = constructAt(m_segments, p);
             s.triangle = tri;
             s.t0 = float(k) / float(n);
             s.t1 = float(k + 1) / float(n);
@@ -314,11 +314,11 @@ SegmentedGeometry::WorldCorners SegmentedGeometry::cornersOf(const TriangleSegme
     return c;
 }
 
-LargeVector<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {
-    LargeVector<raster::PixelBounds> bounds(m_segments.size());
+LargeBuffer<raster::PixelBounds> SegmentedGeometry::screenBounds(const raster::Viewport& viewport) const {
+    LargeBuffer<raster::PixelBounds> bounds(m_segments.size());
     tbb::parallel_for(std::size_t(0), m_segments.size(), [&](std::size_t i) {
         const TriangleSegment& s = m_segments[i];
-        raster::PixelBounds& b = bounds[i];
+        raster::PixelBounds& b = constructAt(bounds, i);
         if (s.isBackFacingThroughout || isMergedAway(i)) return;  // empty
         if (!s.isInFront()) {
             b = {0, 0, viewport.width - 1, viewport.height - 1};

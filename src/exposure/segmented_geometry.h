@@ -127,13 +127,13 @@ public:
     // the eye each corner's screen path is a straight segment between its ends, so the box of
     // the six projected corners holds the triangle at every time; a segment reaching behind the
     // eye may cover anything; one that faces away throughout covers nothing.
-    LargeVector<raster::PixelBounds> screenBounds(const raster::Viewport& viewport) const;
+    LargeBuffer<raster::PixelBounds> screenBounds(const raster::Viewport& viewport) const;
 
 private:
     FlatGeometry m_flat;
     SegmentPlan m_plan;
     int m_numSegments = 1;
-    LargeVector<TriangleSegment> m_segments;
+    LargeBuffer<TriangleSegment> m_segments;
     std::vector<VertexArray> m_positions, m_normals;  ///< per segment end k / numSegments: the flat geometry's vertices
     std::int64_t m_numBackFacing = 0;
     std::int64_t m_numMergedAway = 0;

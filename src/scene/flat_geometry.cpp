@@ -33,7 +33,7 @@ void evaluateAllVertices(const Scene& scene, const std::vector<std::uint32_t>& o
             const Mesh& mesh = scene.meshes[m];
             tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(mesh.numVertices()), 4096),
                               [&](const tbb::blocked_range<std::uint32_t>& vr) {
-                                  for (std::uint32_t v = vr.begin(); v != vr.end(); ++v) out[offsets[m] + v] = eval(mesh, v);
+                                  for (std::uint32_t v = vr.begin(); v != vr.end(); ++v) constructAt(out, offsets[m] + v) = eval(mesh, v);
                               });
         }
     });

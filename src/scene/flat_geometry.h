@@ -25,7 +25,7 @@ struct FlatTriangle {
 // A frame's per-triangle and per-vertex arrays: large on a dense scene, so in huge pages
 // where the system has them (LargeVector).
 using FlatTriangles = LargeVector<FlatTriangle>;
-using VertexArray = LargeVector<glm::vec3>;
+using VertexArray = LargeBuffer<glm::vec3>;  ///< FlatGeometry::positionsAt and normalsAt construct every vertex
 
 // FlatGeometry views all triangles of a scene as one array with global vertex indices, so that
 // methods loop over triangles rather than meshes. It owns no positions: it evaluates the

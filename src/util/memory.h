@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace streak {
@@ -40,5 +42,35 @@ struct LargeAllocator {
 // A vector of a frame's large per-triangle or per-vertex data.
 template <class T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
+
+// LargeAllocator whose default construction does nothing: resize() leaves the new elements
+// unconstructed, and their owner constructs each in place (LargeBuffer::constructAt) where it
+// fills them, in parallel. A fresh page is zeroed by the kernel when it is first touched, and
+// resize() touched every page of a dense frame's segments on one thread (a 128 MB block: most of
+// the spheres' setup); filled in parallel, each thread faults in the pages it writes.
+template <class T>
+struct LargeBufferAllocator : LargeAllocator<T> {
+    LargeBufferAllocator() = default;
+    template <class U>
+    LargeBufferAllocator(const LargeBufferAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U*) noexcept {}
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+// A LargeVector whose elements are constructed by their owner: after resize(n), element i is
+// usable once constructAt(buffer, i) has made it (value-initialized, as LargeVector's resize
+// makes it), typically in the parallel loop that fills it.
+template <class T>
+using LargeBuffer = std::vector<T, LargeBufferAllocator<T>>;
+
+template <class T>
+T& constructAt(LargeBuffer<T>& buffer, std::size_t i) {
+    static_assert(std::is_trivially_destructible_v<T>, "a LargeBuffer's elements are never destroyed one by one");
+    return *::new (static_cast<void*>(buffer.data() + i)) T();
+}
 
 }  // namespace streak

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -72,6 +74,40 @@ TEST(LargeVector, HoldsWhatIsWrittenInBlocksSmallAndLarge) {
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % kLargeBlockBytes, 0u) << "a large block is aligned to a huge page";
         }
     }
+}
+
+// LargeBuffer: resize() makes nothing (its allocator's default construction leaves the bytes as
+// they are), and constructAt makes an element as LargeVector's resize would, value-initialized
+// whatever the bytes under it held; copies copy.
+TEST(LargeBuffer, ResizeMakesNothingAndConstructAtValueInitializes) {
+    struct Item {
+        int a = 7;
+        float b = 2.5f;
+        std::uint32_t c = 0;
+    };
+    using Traits = std::allocator_traits<LargeBufferAllocator<Item>>;
+    LargeBufferAllocator<Item> allocator;
+    Item* raw = Traits::allocate(allocator, 4);
+    std::memset(static_cast<void*>(raw), 0xAB, 4 * sizeof(Item));
+    Traits::construct(allocator, raw);
+    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(raw);
+    for (std::size_t i = 0; i < sizeof(Item); ++i) ASSERT_EQ(bytes[i], 0xAB) << "default construction wrote byte " << i;
+    Traits::deallocate(allocator, raw, 4);
+
+    LargeBuffer<Item> items;
+    items.resize(kLargeBlockBytes / sizeof(Item) * 2 + 3);  // a large block, in huge pages where lent
+    std::memset(static_cast<void*>(items.data()), 0xAB, items.size() * sizeof(Item));  // a reused block's bytes
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        Item& item = constructAt(items, i);
+        ASSERT_EQ(&item, &items[i]);
+        ASSERT_EQ(item.a, 7);
+        ASSERT_EQ(item.b, 2.5f);
+        ASSERT_EQ(item.c, 0u);
+        item.c = std::uint32_t(i);
+    }
+    const LargeBuffer<Item> copy = items;
+    ASSERT_EQ(copy.size(), items.size());
+    for (std::size_t i = 0; i < copy.size(); ++i) ASSERT_EQ(copy[i].c, std::uint32_t(i));
 }
 
 // The point of LargeVector: a large block is advised into huge pages, and faults in them where

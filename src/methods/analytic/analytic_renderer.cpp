@@ -162,8 +162,8 @@ private:
         raster::SamplePattern pattern;
         std::optional<exposure::SegmentedGeometry> segmented;
         exposure::SpanShadingSettings spanShading;
-        LargeVector<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
-        LargeVector<float> occluderDepths;        ///< per triangle segment: EarlyCull::occluderDepths
+        LargeBuffer<raster::PixelBounds> bounds;  ///< per triangle segment: the pixels it may cover
+        LargeBuffer<float> occluderDepths;        ///< per triangle segment: EarlyCull::occluderDepths
         simd::Level simd = simd::activeLevel();    ///< how the box loop's edge batches run
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss

@@ -300,8 +300,8 @@ private:
         const FlatGeometry& geometry;
         std::span<const exposure::TriangleSegment> paths;  ///< one per segment
         exposure::SpanShadingSettings spanShading;
-        LargeVector<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
-        LargeVector<float> occluderDepths;                ///< per path: EarlyCull::occluderDepths
+        LargeBuffer<raster::PixelBounds> bounds;          ///< per path: the pixels it may cover
+        LargeBuffer<float> occluderDepths;                ///< per path: EarlyCull::occluderDepths
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
     };
 
