@@ -1,5 +1,7 @@
 #include "exposure/closed_surfaces.h"
 
+#include "util/memory.h"
+
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -34,7 +36,7 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     // parts is left unwelded, which opens the surface around it.
     auto bitsOf = [](float f) { return std::uint64_t(std::bit_cast<std::uint32_t>(f + 0.0f)); };  // (-0 as +0)
     const std::size_t tableSize = std::bit_ceil(2 * numVertices);
-    std::vector<std::uint32_t> table(tableSize, kNone), corner(numVertices);
+    LargeVector<std::uint32_t> table(tableSize, kNone), corner(numVertices);
     for (std::uint32_t v = 0; v < numVertices; ++v) {
         const glm::vec3 p = at(0, v);
         const std::uint64_t h = bitsOf(p.x) * 0x9E3779B97F4A7C15ull ^ std::rotl(bitsOf(p.y) * 0xC2B2AE3D27D4EB4Full, 21) ^
@@ -59,7 +61,7 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
                 distinctPoses.push_back(k);
                 break;
             }
-    std::vector<std::uint8_t> isParted(numVertices, 0);  ///< per corner: its vertices part in some pose
+    LargeVector<std::uint8_t> isParted(numVertices, 0);  ///< per corner: its vertices part in some pose
     for (const std::size_t k : distinctPoses)
         for (std::uint32_t v = 0; v < numVertices; ++v)
             if (corner[v] != v && at(k, v) != at(k, corner[v])) isParted[corner[v]] = 1;
@@ -69,8 +71,8 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     // Each triangle's welded corners (kNone where two are one: degenerate, left out), and each
     // corner's edges out (to the next corner of each triangle, with the edge's slot 3 t + e) as
     // lists.
-    std::vector<glm::uvec3> corners(numTriangles);
-    std::vector<std::uint32_t> firstOut(numVertices + 1, 0);
+    LargeVector<glm::uvec3> corners(numTriangles);
+    LargeVector<std::uint32_t> firstOut(numVertices + 1, 0);
     for (std::size_t t = 0; t < numTriangles; ++t) {
         const glm::uvec3 v = mesh.triangles[t];
         const glm::uvec3 c(corner[v.x], corner[v.y], corner[v.z]);
@@ -82,9 +84,9 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     struct Edge {
         std::uint32_t to, slot;
     };
-    std::vector<Edge> out(firstOut.back());
+    LargeVector<Edge> out(firstOut.back());
     {
-        std::vector<std::uint32_t> next(firstOut.begin(), firstOut.end() - 1);
+        LargeVector<std::uint32_t> next(firstOut.begin(), firstOut.end() - 1);
         for (std::uint32_t t = 0; t < numTriangles; ++t)
             if (corners[t].x != kNone)
                 for (std::uint32_t e = 0; e < 3; ++e) out[next[corners[t][int(e)]]++] = {corners[t][int((e + 1) % 3)], 3 * t + e};
@@ -111,7 +113,7 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     // Closed and oriented: each directed edge once and its reverse once, its twin (per edge
     // slot; kNone where it has none, which opens the surface).
     // (Each slot is written by the corner it leaves from alone, so corners go in parallel.)
-    std::vector<std::uint32_t> twin(3 * std::size_t(numTriangles), kNone);
+    LargeVector<std::uint32_t> twin(3 * std::size_t(numTriangles), kNone);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(numVertices), 4096), [&](const tbb::blocked_range<std::uint32_t>& r) {
         for (std::uint32_t a = r.begin(); a != r.end(); ++a)
             for (std::uint32_t i = firstOut[a]; i < firstOut[a + 1]; ++i) {
@@ -121,8 +123,8 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     });
     // Surfaces: triangles joined across their edges by twins, never at a corner alone (two
     // shells touching at a point, one of them inward say, are two surfaces, each measured).
-    std::vector<std::uint32_t> surface(numTriangles, kNone);  ///< per triangle: its surface's first triangle
-    std::vector<std::uint8_t> isOpen(numTriangles, 0);        ///< per surface's first triangle
+    LargeVector<std::uint32_t> surface(numTriangles, kNone);  ///< per triangle: its surface's first triangle
+    LargeVector<std::uint8_t> isOpen(numTriangles, 0);        ///< per surface's first triangle
     std::vector<std::uint32_t> stack;
     for (std::uint32_t seed = 0; seed < numTriangles; ++seed) {
         if (corners[seed].x == kNone || surface[seed] != kNone) continue;
@@ -144,7 +146,7 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
     }
 
     // Positive volume at every (distinct) pose, about a corner of the surface (for precision).
-    std::vector<double> volume(numTriangles);
+    LargeVector<double> volume(numTriangles);
     for (const std::size_t k : distinctPoses) {
         std::fill(volume.begin(), volume.end(), 0.0);
         for (std::uint32_t t = 0; t < numTriangles; ++t) {
@@ -158,7 +160,7 @@ std::uint32_t meshSurfaces(const Mesh& mesh, std::uint32_t vertexOffset, std::sp
         for (std::uint32_t t = 0; t < numTriangles; ++t)
             if (surface[t] == t && !(volume[t] > 0.0)) isOpen[t] = 1;
     }
-    std::vector<std::uint32_t> id(numTriangles, kNone);
+    LargeVector<std::uint32_t> id(numTriangles, kNone);
     std::uint32_t count = 0;
     for (std::uint32_t t = 0; t < numTriangles; ++t) {
         const std::uint32_t r = surface[t];

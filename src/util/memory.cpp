@@ -19,7 +19,7 @@ std::uint64_t residentBytes() {
 }
 
 void* allocateLarge(std::size_t bytes) {
-    if (bytes < kLargeBlockBytes) return ::operator new(bytes);
+    if (bytes < kHugePageWorthyBytes) return ::operator new(bytes);
     if (bytes > std::size_t(-1) - (kLargeBlockBytes - 1)) throw std::bad_alloc();
     // aligned_alloc wants a multiple of the alignment; the slack is under one huge page.
     const std::size_t rounded = (bytes + kLargeBlockBytes - 1) / kLargeBlockBytes * kLargeBlockBytes;
@@ -34,7 +34,7 @@ void* allocateLarge(std::size_t bytes) {
 }
 
 void freeLarge(void* block, std::size_t bytes) noexcept {
-    if (bytes < kLargeBlockBytes) ::operator delete(block);
+    if (bytes < kHugePageWorthyBytes) ::operator delete(block);
     else std::free(block);
 }
 

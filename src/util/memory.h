@@ -17,10 +17,15 @@ std::uint64_t residentBytes();
 // Memory for a frame's large arrays (a dense scene's segments, bounds and poses: hundreds of MB
 // written once per frame). Each fresh page is a fault, and on a virtual machine a 4 KiB fault
 // costs microseconds: 128 MB of segments took 350 ms to fault in against 35 ms to fill. A
-// block of at least kLargeBlockBytes is aligned to it and asked for as huge pages where the
-// system has them (Linux transparent huge pages in "madvise" mode, the default of many
-// distributions): one fault per 2 MiB. Smaller blocks are plain operator new.
+// block of at least kHugePageWorthyBytes is rounded up to whole huge pages (kLargeBlockBytes),
+// aligned to them and asked for as huge pages where the system has them (Linux transparent huge
+// pages in "madvise" mode, the default of many distributions): one fault per 2 MiB. Smaller
+// blocks are plain operator new.
 inline constexpr std::size_t kLargeBlockBytes = std::size_t(2) << 20;
+// At about 10 us a 4 KiB fault on such a machine, an eighth of a huge page in small pages (64
+// faults) costs more than zeroing a whole huge page, and a frame's temporaries of a few hundred
+// KB (the closed-surface search's lists, ClosedSurfaces) were mostly their faults.
+inline constexpr std::size_t kHugePageWorthyBytes = kLargeBlockBytes / 8;
 void* allocateLarge(std::size_t bytes);
 void freeLarge(void* block, std::size_t bytes) noexcept;
 

@@ -64,13 +64,14 @@ MappingOf mappingOf(const void* address) {
 }
 
 TEST(LargeVector, HoldsWhatIsWrittenInBlocksSmallAndLarge) {
-    for (const std::size_t count : {std::size_t(10), kLargeBlockBytes / sizeof(std::uint32_t) * 3 + 7}) {
+    for (const std::size_t count : {std::size_t(10), kHugePageWorthyBytes / sizeof(std::uint32_t) - 1, kHugePageWorthyBytes / sizeof(std::uint32_t) + 1,
+                                    kLargeBlockBytes / sizeof(std::uint32_t) * 3 + 7}) {
         LargeVector<std::uint32_t> values(count);
         std::iota(values.begin(), values.end(), 1u);
         values.push_back(0u);  // a reallocation keeps what was there
         ASSERT_EQ(values.size(), count + 1);
         for (std::size_t i = 0; i < count; ++i) ASSERT_EQ(values[i], std::uint32_t(i + 1));
-        if (count * sizeof(std::uint32_t) >= kLargeBlockBytes) {
+        if (values.capacity() * sizeof(std::uint32_t) >= kHugePageWorthyBytes) {
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % kLargeBlockBytes, 0u) << "a large block is aligned to a huge page";
         }
     }
