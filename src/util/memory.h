@@ -49,7 +49,7 @@ template <class T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
 
 // LargeAllocator whose default construction does nothing: resize() leaves the new elements
-// unconstructed, and their owner constructs each in place (LargeBuffer::constructAt) where it
+// unconstructed, and their owner constructs each in place (constructAt) where it
 // fills them, in parallel. A fresh page is zeroed by the kernel when it is first touched, and
 // resize() touched every page of a dense frame's segments on one thread (a 128 MB block: most of
 // the spheres' setup); filled in parallel, each thread faults in the pages it writes.
