@@ -914,9 +914,11 @@ private:
 
     // One streak Mesh per instance: what the keys do not change (name, triangles, uvs, colours,
     // material, winding), then the keys (writeKeys). A primitive only one instance uses hands its
-    // mesh its triangles, uvs and colours rather than a copy: nothing reads them from the
-    // primitive afterwards, and on the million-triangle spheres (102 primitives, each placed
-    // once) the triangles alone are 12 MB of fresh pages.
+    // mesh its uvs and colours rather than a copy, and its triangles unless a point cache moves
+    // the instance: cachedPose makes every later pose's normals from them (the keys the chooser
+    // adds after this). Nothing else reads them from the primitive afterwards, and on the
+    // million-triangle spheres (102 primitives, each placed once) the triangles alone are 12 MB
+    // of fresh pages.
     void makeMeshes(const std::vector<PosedInstances>& keys) {
         m_scene.meshes.assign(m_instances.size(), Mesh{});
         std::map<const PrimitiveData*, int> uses;
@@ -930,15 +932,10 @@ private:
             Mesh& mesh = m_scene.meshes[i];
             mesh.name = instance.name;
             mesh.interpolation = MotionInterpolation::PiecewiseLinear;
-            if (uses[instance.data] == 1) {
-                mesh.uvs = std::move(data.uvs);
-                mesh.colors = std::move(data.colors);
-                mesh.triangles = std::move(data.triangles);
-            } else {
-                mesh.uvs = data.uvs;
-                mesh.colors = data.colors;
-                mesh.triangles = data.triangles;
-            }
+            const bool isOnlyUse = uses[instance.data] == 1;
+            mesh.uvs = isOnlyUse ? std::move(data.uvs) : data.uvs;
+            mesh.colors = isOnlyUse ? std::move(data.colors) : data.colors;
+            mesh.triangles = isOnlyUse && !instance.cacheFirst ? std::move(data.triangles) : data.triangles;
             mesh.material = data.material;
             if (isMirrored(instance, middle.worldFromNode[instance.node]))
                 for (glm::uvec3& tri : mesh.triangles) std::swap(tri.y, tri.z);

@@ -149,21 +149,30 @@ TEST(PointCache, MovesTheNamedMeshInItsNodesSpaceOrInWorldSpace) {
     expectErrorContaining([&] { loadGltf(path, options); }, "the cache has 3 points, the mesh it moves 4 vertices");
 }
 
+// A glTF file of one triangle (corners `rest`, normals +z, which the cache's points replace)
+// on a node scaled by `scale`; returns its path.
+std::string writeTriangleWithNormals(test::TempDir& dir, const std::string& name, const std::vector<glm::vec3>& rest, const glm::vec3& scale) {
+    test::GltfBuilder b;
+    nlohmann::json tri;
+    std::vector<float> positions;
+    for (const glm::vec3& p : rest) positions.insert(positions.end(), {p.x, p.y, p.z});
+    tri["attributes"]["POSITION"] = b.addFloats(positions, "VEC3", 3);
+    tri["attributes"]["NORMAL"] = b.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+    const int node = b.addMeshNode(tri);
+    if (scale != glm::vec3(1.0f)) b.json()["nodes"][node]["scale"] = {scale.x, scale.y, scale.z};
+    const std::vector<std::uint8_t> gltf = b.gltfBytes();
+    const std::string path = dir.file(name);
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(gltf.data()), std::streamsize(gltf.size()));
+    return path;
+}
+
 // Under a mirroring node (scale -1 in x) the drawn triangles are flipped back to
 // counter-clockwise in front (glTF 3.7.4), and the normals made from the cache's points face
 // the way the drawn triangles do, in the node's space and in world space alike.
 TEST(PointCache, NormalsFaceTheDrawnTrianglesUnderAMirroringNode) {
     test::TempDir dir;
-    test::GltfBuilder b;
-    nlohmann::json tri;
-    tri["attributes"]["POSITION"] = b.addFloats({-1, -1, 0, 1, -1, 0, 0, 1, 0}, "VEC3", 3);
-    tri["attributes"]["NORMAL"] = b.addFloats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
-    const int node = b.addMeshNode(tri);
-    b.json()["nodes"][node]["scale"] = {-1.0, 1.0, 1.0};
-    const std::vector<std::uint8_t> gltf = b.gltfBytes();
-    const std::string path = dir.file("mirrored.gltf");
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(gltf.data()), std::streamsize(gltf.size()));
     const std::vector<glm::vec3> rest{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    const std::string path = writeTriangleWithNormals(dir, "mirrored.gltf", rest, glm::vec3(-1.0f, 1.0f, 1.0f));
     std::vector<glm::vec3> moved = rest;
     for (glm::vec3& p : moved) p.y += 1.0f;
     writeBytes(dir.file("up.pc2"), pc2Bytes({rest, moved}, 0.0f, 24.0f));
@@ -181,6 +190,34 @@ TEST(PointCache, NormalsFaceTheDrawnTrianglesUnderAMirroringNode) {
         const glm::vec3 facing = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
         for (std::size_t v = 0; v < 3; ++v) EXPECT_GT(glm::dot(facing, mesh.normals[v]), 0.0f);
     }
+}
+
+// Keys the loader chooses (motionKeys 0) for a cache whose motion bends: the keys after the first
+// two are posed from the cache after the meshes are made, and each still gets the normals of its
+// triangle (a slanted one, whose normal is not the +z a point with none falls back to).
+TEST(PointCache, ChosenKeysKeepTheTrianglesNormals) {
+    test::TempDir dir;
+    const std::vector<glm::vec3> rest{{-1, -1, 0}, {1, -1, 0}, {0, 1, 1}};
+    const std::string path = writeTriangleWithNormals(dir, "slanted.gltf", rest, glm::vec3(1.0f));
+    // The triangle goes 1.5 along x and comes back over the shutter: two keys miss its middle.
+    std::vector<glm::vec3> away = rest;
+    for (glm::vec3& p : away) p.x += 1.5f;
+    writeBytes(dir.file("bounce.pc2"), pc2Bytes({rest, away, rest}, 0.0f, 12.0f));
+    GltfOptions options;
+    options.frame = 0.0, options.shutter = 24.0;
+    options.pointCache = GltfPointCache{dir.file("bounce.pc2"), "", false};
+    const Scene scene = loadGltf(path, options);
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const Mesh& mesh = scene.meshes[0];
+    ASSERT_GT(mesh.numKeys, 2);
+    ASSERT_TRUE(mesh.hasNormals());
+    const glm::vec3 expected = glm::normalize(glm::vec3(0.0f, -2.0f, 4.0f));  // (2, 0, 0) x (1, 2, 1)
+    for (int k = 0; k < mesh.numKeys; ++k)
+        for (std::size_t v = 0; v < 3; ++v) {
+            SCOPED_TRACE(testing::Message() << "key " << k << ", vertex " << v);
+            const glm::vec3 n = mesh.normals[std::size_t(k) * 3 + v];
+            EXPECT_NEAR(n.x, expected.x, 1e-5f); EXPECT_NEAR(n.y, expected.y, 1e-5f); EXPECT_NEAR(n.z, expected.z, 1e-5f);
+        }
 }
 
 }  // namespace
