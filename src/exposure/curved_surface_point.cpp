@@ -29,6 +29,7 @@ CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const ras
       m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
       m_clamp(site.clampToTriangle),
       m_isBox(site.boxFootprint),
+      m_boxTaps(site.boxTaps),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),

@@ -32,6 +32,7 @@ public:
     bool uvAt(float t, glm::vec2& uv) const override;
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
+    glm::ivec2 boxTaps() const override { return m_boxTaps; }
     int materialIndex() const override;
 
 private:
@@ -41,6 +42,7 @@ private:
     glm::dvec2 m_step;  ///< the footprint in NDC
     bool m_clamp;       ///< barycentrics held to the triangle
     bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
+    glm::ivec2 m_boxTaps;  ///< ShadingSite::boxTaps
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

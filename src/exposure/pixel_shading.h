@@ -34,9 +34,10 @@ enum class ShadingRate {
 
 // The exact methods' shading options: `shading=pixel|sample` (pixel; against Cycles,
 // docs/BENCHMARKS.md) and `shading-cells=G` (4):
-// at ShadingRate::Pixel a textured triangle is shaded in G x G cells of the pixel (at most --aa
-// N per axis, and as few as hold as many samples a side: PixelShadingOptions::cellsFor), each
-// shared by the samples that fall in it, an untextured one once per pixel.
+// at ShadingRate::Pixel a textured triangle is shaded once per pixel at --aa 3 and 4, and else
+// in G x G cells of the pixel (at most --aa N per axis, and as few as hold as many samples a side:
+// PixelShadingOptions::cellsFor), each shared by the samples that fall in it; an untextured one
+// once per pixel.
 //
 // `shading-filter=box|lookup` (box): how a shared shading filters its texture over the cluster's
 // footprint, as the mean of its texels inside the triangle (TextureFootprint::isBox, clipTo) or
@@ -52,7 +53,22 @@ struct PixelShadingOptions {
     // box (Texture::sampleBox) shared by only two. Against Cycles at --aa 6 the 14 shared models
     // score as with 4 within 0.2 dB but MorphStressTest (-1.2 dB), textured ones in 1.12-1.71x less
     // time (docs/BENCHMARKS.md, "Cells of equal samples").
+    //
+    // At --aa 3 and 4 (kOneCellFromAa to kOneCellUpToAa) the pixel is one cell: its samples
+    // share one box over the pixel (at least as many taps a side as they span:
+    // ShadingSite::boxTaps), where cells of one sample would each take their own lookup, a bell
+    // of one sample spacing, whose sum over the pixel is a wider filter than the pixel's box.
+    // Against Cycles (analytic, 320x240): CesiumMan +0.8 dB at --aa 3, Fox +1.2, and at --aa 4
+    // every model within 0.2 dB or better; 1.2-2.5x faster on textured models (one box's taps,
+    // at most Texture::kMaxSweptBoxTaps, for N^2 lookups' of up to 32 along a long path). At
+    // --aa 2 one box is 0.8x as fast on minified textures (CesiumMan, builtin:cubes at
+    // 1024x768) for 1.2-1.7 dB: the 4 lookups stay, the faster way to 40 dB. Past --aa 4, one
+    // box over 25 or more samples blurs what its cells keep (its level follows its longer axis):
+    // CesiumMan at --aa 6 and 8 loses 1.3-1.7 dB with one cell (docs/BENCHMARKS.md, "One cell
+    // at --aa 3 and 4").
+    static constexpr int kOneCellFromAa = 3, kOneCellUpToAa = 4;
     int cellsFor(int samplesPerAxis) const {
+        if (samplesPerAxis >= kOneCellFromAa && samplesPerAxis <= kOneCellUpToAa) return 1;
         const int most = std::max(1, std::min(cellsPerAxis, samplesPerAxis));
         const int perCell = (samplesPerAxis + most - 1) / most;
         return (samplesPerAxis + perCell - 1) / perCell;
@@ -194,7 +210,10 @@ public:
                 color = shade(cluster.triangle, cluster.t0, cluster.t1, shared).color;
                 counters.stillSampleLookups += std::int64_t(m_siteSamples.size());
             } else {
-                color = shade(cluster.triangle, cluster.t0, cluster.t1, ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter}).color;
+                color = shade(cluster.triangle, cluster.t0, cluster.t1,
+                              ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter,
+                                          boxTapsOf(cluster.footprintPixels, m_samplesPerAxis)})
+                            .color;
             }
             for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {
                 const Pending& p = m_pending[m_order[k]];

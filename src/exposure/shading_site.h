@@ -3,6 +3,7 @@
 #include "scene/barycentric.h"
 
 #include <glm/vec2.hpp>
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -33,6 +34,11 @@ struct ShadingSite {
     // The footprint is a region of the screen whose samples share the shading, so its texels are
     // averaged alike (a box, MovingSurfacePoint::hasBoxFootprint), not a sample's bell.
     bool boxFootprint = false;
+    // The fewest taps a box takes a side (Texture::boxGrid): as many as the samples sharing it
+    // span (boxTapsOf), so that a box over a magnified texture, less than a texel wide, still
+    // integrates the bilinear surface across it as its samples' own lookups did, and is no
+    // coarser a filter than they were. One where the box stands for no samples.
+    glm::ivec2 boxTaps{1};
     // A still textured triangle's shading shared by the samples of a pixel that see it
     // (PixelShading, Sharing::StillTextured): the point at `ndc` (one of them) gives the texture
     // footprint of one sample spacing, found once, and the surface is shaded (looked up and lit)
@@ -42,8 +48,17 @@ struct ShadingSite {
     std::span<const SiteSample> samples{};
 };
 
+// A box's fewest taps a side (ShadingSite::boxTaps) over footprintPixels at --aa samplesPerAxis:
+// the samples it spans a side, 1 to kMaxBoxTapsASide (Texture::kMaxBoxTaps = 64, 8 x 8). (floor of
+// x + 1/2, not round: the GL twin's GLSL round() may break ties either way.)
+inline constexpr int kMaxBoxTapsASide = 8;
+inline glm::ivec2 boxTapsOf(const glm::dvec2& footprintPixels, int samplesPerAxis) {
+    const glm::dvec2 samples = glm::floor(footprintPixels * double(samplesPerAxis) + 0.5);
+    return glm::clamp(glm::ivec2(samples), glm::ivec2(1), glm::ivec2(kMaxBoxTapsASide));
+}
+
 // Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.
-inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false, false}; }
+inline ShadingSite sampleSite(const glm::dvec2& ndc, int samplesPerAxis) { return {ndc, glm::dvec2(1.0 / samplesPerAxis), false, false, glm::ivec2(1)}; }
 
 // The uv at barycentrics b held to the triangle, into `uv`, when b lies outside it; false (uv
 // untouched) when b is inside and the caller's own exact uv stands.

@@ -47,6 +47,8 @@ public:
     // count alike (TextureFootprint::isBox), not one sample's spacing: true where a pixel's
     // samples share the shading (ShadingSite::boxFootprint).
     virtual bool hasBoxFootprint() const { return false; }
+    // A box footprint's fewest taps a side (ShadingSite::boxTaps).
+    virtual glm::ivec2 boxTaps() const { return glm::ivec2(1); }
 
     // True when nothing the point is shaded from changes over [t0, t1] (its position, normal,
     // uv and footprint, and the eye): one instant then shades the whole span. False where the

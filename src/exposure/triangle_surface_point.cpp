@@ -12,6 +12,7 @@ TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, co
       m_step(2.0 * site.footprintPixels.x / double(viewport.width), 2.0 * site.footprintPixels.y / double(viewport.height)),
       m_clamp(site.clampToTriangle),
       m_isBox(site.boxFootprint),
+      m_boxTaps(site.boxTaps),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_samples(site.samples),

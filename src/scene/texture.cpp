@@ -231,7 +231,8 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const Lookup& lookup) const {
     return sum / float(lookup.taps);
 }
 
-Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps) const {
+Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps,
+                                  glm::ivec2 fewestTaps) const {
     const int maxLevel = numLevels() - 1;
     if (!std::isfinite(lengthX) || !std::isfinite(lengthY) || !std::isfinite(pathTexels)) return {maxLevel, 1, 1, 1};
     // (At most kMaxBoxTaps + 1 an axis, which is as good as any more for the test below: an edge-on
@@ -240,6 +241,7 @@ Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels
         return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(kMaxBoxTaps + 1))));
     };
     maxPathTaps = std::max(maxPathTaps, 1);
+    fewestTaps = glm::clamp(fewestTaps, glm::ivec2(1), glm::ivec2(8));
     BoxGrid grid;
     auto at = [&](int level) {
         const float spacing = std::exp2(float(level));
@@ -251,6 +253,14 @@ Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels
     // kMaxBoxTaps taps in all, each axis as many taps as it is spacings long, at least one.
     for (at(0); grid.tapsX * grid.tapsY > kMaxBoxTaps && grid.level < maxLevel;) at(grid.level + 1);
     grid.tapsX = std::min(grid.tapsX, kMaxBoxTaps), grid.tapsY = std::min(grid.tapsY, kMaxBoxTaps / grid.tapsX);
+    // On level 0 the fewest taps a side, within kMaxBoxTaps: there a box narrower than the taps'
+    // count of texels takes more taps of the bilinear surface than texels. On a coarser level the
+    // box's longer axis set the level, and more taps across the shorter one on its wide texels
+    // would only widen the filter (never a coarser level for them either).
+    if (grid.level == 0) {
+        grid.tapsX = std::max(grid.tapsX, std::min(fewestTaps.x, kMaxBoxTaps / grid.tapsY));
+        grid.tapsY = std::max(grid.tapsY, std::min(fewestTaps.y, kMaxBoxTaps / grid.tapsX));
+    }
     // Fewer times past kMaxSweptBoxTaps, but at least two a width of the box's narrower side.
     const int covering = int(std::ceil(std::min(2.0f * pathTexels / std::max(std::min(lengthX, lengthY), 1e-6f), float(maxPathTaps))));
     grid.tapsAlong = std::min(grid.tapsAlong, std::max({1, covering, kMaxSweptBoxTaps / (grid.tapsX * grid.tapsY)}));

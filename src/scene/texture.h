@@ -119,9 +119,12 @@ public:
         int level = 0, tapsX = 1, tapsY = 1, tapsAlong = 1;
     };
     // The grid of a box lengthX x lengthY texels (level 0) swept along a path pathTexels long,
-    // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. Lengths that
-    // are not finite take the coarsest level's texel.
-    BoxGrid boxGrid(float lengthX, float lengthY, float pathTexels = 0.0f, float tapsPerTexel = 1.0f, int maxPathTaps = 1) const;
+    // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. On level 0 each
+    // axis then takes at least fewestTaps of it (1 to 8), within kMaxBoxTaps in all: a box shared
+    // by that many samples a side samples the bilinear surface no coarser than they did. Lengths
+    // that are not finite take the coarsest level's texel.
+    BoxGrid boxGrid(float lengthX, float lengthY, float pathTexels = 0.0f, float tapsPerTexel = 1.0f, int maxPathTaps = 1,
+                    glm::ivec2 fewestTaps = glm::ivec2(1)) const;
     // One time's box on `grid` (sampleBox is this on its own box's grid).
     glm::vec4 sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, const BoxGrid& grid, float* inside = nullptr) const;
     // The level of the anisotropic taps for a footprint (minLod 0): the finest detail a lookup

@@ -220,6 +220,45 @@ TEST(TextureFootprint, BoxIsTheMeanOverItsParallelogram) {
     EXPECT_EQ(tex.sample(uv, TextureFootprint{small, glm::vec2(small.y, small.x), 0.0f, true}), tex.sampleBilinear(uv, 0));
 }
 
+// A box less than a texel wide on a magnified texture is one bilinear tap at its centre, which
+// is not its mean where it straddles a texel centre (the bilinear surface bends there). A box
+// shared by N samples a side takes at least N taps a side on level 0 (boxGrid's fewestTaps), and
+// comes as close to the brute-force mean as N x N point samples do. On a coarser level the fewest
+// taps change nothing: there the box's longer axis set the level.
+TEST(TextureFootprint, ABoxSharedByManySamplesTakesAsManyTapsOnAMagnifiedTexture) {
+    const Texture tex = checksAndBorders();
+    std::uint32_t state = 777u;
+    auto uniform = [&] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+    double oneTapError = 0.0, fourTapsError = 0.0;
+    constexpr int kCases = 300;
+    for (int c = 0; c < kCases; ++c) {
+        const float width = 0.3f + 0.6f * uniform(), angle = 6.2831853f * uniform();
+        const glm::vec2 axis(std::cos(angle), std::sin(angle));
+        const glm::vec2 dx = axis * width / 128.0f, dy = glm::vec2(-axis.y, axis.x) * width / 128.0f;
+        const glm::vec2 uv(uniform(), uniform());
+        const float truth = bruteForceBox(tex, uv, dx, dy).x;
+        const TextureFootprint box{dx, dy, 0.0f, true};
+        const glm::vec2 size(128.0f);
+        const Texture::BoxGrid plain = tex.boxGrid(glm::length(dx * size), glm::length(dy * size));
+        const Texture::BoxGrid four = tex.boxGrid(glm::length(dx * size), glm::length(dy * size), 0.0f, 1.0f, 1, glm::ivec2(4));
+        ASSERT_EQ(plain.tapsX * plain.tapsY, 1);
+        ASSERT_EQ(four.level, 0);
+        ASSERT_EQ(four.tapsX, 4);
+        ASSERT_EQ(four.tapsY, 4);
+        oneTapError += std::abs(tex.sampleBox(uv, box, plain).x - truth);
+        fourTapsError += std::abs(tex.sampleBox(uv, box, four).x - truth);
+    }
+    oneTapError /= kCases, fourTapsError /= kCases;
+    std::printf("a box under a texel: one tap %.5f, 4 x 4 taps %.5f off its mean\n", oneTapError, fourTapsError);
+    EXPECT_LT(fourTapsError, 0.25 * oneTapError);
+    // On level 2 (a box 40 x 4 texels) the fewest taps leave the grid as it was.
+    const Texture::BoxGrid wide = tex.boxGrid(40.0f, 4.0f), wideFour = tex.boxGrid(40.0f, 4.0f, 0.0f, 1.0f, 1, glm::ivec2(4));
+    ASSERT_GT(wide.level, 0);
+    EXPECT_EQ(wideFour.level, wide.level);
+    EXPECT_EQ(wideFour.tapsX, wide.tapsX);
+    EXPECT_EQ(wideFour.tapsY, wide.tapsY);
+}
+
 // Clipped to a uv triangle, a box averages only the texels inside it, and says how much of the
 // box that is: on the texture of an atlas, a triangle whose edge crosses the box must not see
 // the texels beyond its edge. Brute force over box and triangle is the reference.

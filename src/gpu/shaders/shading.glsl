@@ -125,15 +125,17 @@ vec2 heldUv(UvTriangle t, vec2 uv) {
 // Texture::boxGrid: (level, tapsX, tapsY, tapsAlong) for a box lengthX x lengthY texels swept
 // along a path pathTexels long: the finest level where the box takes at most kMaxBoxTaps taps,
 // the path tapsPerTexel a spacing of it (at most maxPathTaps), fewer where box and path together
-// would pass kMaxSweptBoxTaps, down to two a width of the box's narrower side.
+// would pass kMaxSweptBoxTaps, down to two a width of the box's narrower side; on level 0 each
+// axis at least fewestTaps of it (1 to 8).
 const int kMaxBoxTaps = 64;
 const int kMaxSweptBoxTaps = 256;
-ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps) {
+ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps, ivec2 fewestTaps) {
     int maxLevel = textureLevelsOf(index) - 1;
     ivec4 grid = ivec4(maxLevel, 1, 1, 1);
     bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY) || isinf(pathTexels) || isnan(pathTexels));
     if (isFinite) {
         maxPathTaps = max(maxPathTaps, 1);
+        fewestTaps = clamp(fewestTaps, ivec2(1), ivec2(8));
         bool isFound = false;
         for (int l = 0; l <= maxLevel; ++l) {
             float spacing = exp2(float(l));
@@ -148,6 +150,10 @@ ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float t
         }
         grid.y = min(grid.y, kMaxBoxTaps);
         grid.z = min(grid.z, kMaxBoxTaps / grid.y);
+        if (grid.x == 0) {
+            grid.y = max(grid.y, min(fewestTaps.x, kMaxBoxTaps / grid.z));
+            grid.z = max(grid.z, min(fewestTaps.y, kMaxBoxTaps / grid.y));
+        }
         int covering = int(ceil(min(2.0 * pathTexels / max(min(lengthX, lengthY), 1e-6), float(maxPathTaps))));
         grid.w = min(grid.w, max(max(1, covering), kMaxSweptBoxTaps / (grid.y * grid.z)));
     }

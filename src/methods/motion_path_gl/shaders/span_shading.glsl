@@ -20,10 +20,16 @@ struct ShadingSite {
     dvec2 footprintPixels;
     bool clampToTriangle;
     bool boxFootprint;
+    ivec2 boxTaps;  // a box's fewest taps a side (exposure::boxTapsOf)
 };
 
+// exposure::boxTapsOf: the samples a box over footprintPixels spans a side, 1 to 8.
+ivec2 boxTapsOf(dvec2 footprintPixels, int samplesPerAxis) {
+    return clamp(ivec2(floor(footprintPixels * double(samplesPerAxis) + 0.5)), ivec2(1), ivec2(8));
+}
+
 // One sample alone (exposure::sampleSite): one sample spacing.
-ShadingSite sampleSite(dvec2 ndc) { return ShadingSite(ndc, dvec2(1.0 / double(u_flags.y)), false, false); }
+ShadingSite sampleSite(dvec2 ndc) { return ShadingSite(ndc, dvec2(1.0 / double(u_flags.y)), false, false, ivec2(1)); }
 
 // A triangle under a site, with the segment last used (taps come in time order).
 struct SpanPoint {
@@ -240,7 +246,7 @@ vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
             lengthX = max(lengthX, length(ends[i].duvdx * size));
             lengthY = max(lengthY, length(ends[i].duvdy * size));
         }
-        grid = boxGrid(tex, lengthX, lengthY, pathTexels, u_tapsPerTexel, u_textureSamples);
+        grid = boxGrid(tex, lengthX, lengthY, pathTexels, u_tapsPerTexel, u_textureSamples, site.boxTaps);
         numTaps = grid.w;
     }
     vec2 from = ends[0].uv;
