@@ -241,7 +241,6 @@ Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels
         return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(kMaxBoxTaps + 1))));
     };
     maxPathTaps = std::max(maxPathTaps, 1);
-    fewestTaps = glm::clamp(fewestTaps, glm::ivec2(1), glm::ivec2(8));
     BoxGrid grid;
     auto at = [&](int level) {
         const float spacing = std::exp2(float(level));

@@ -120,7 +120,7 @@ public:
     };
     // The grid of a box lengthX x lengthY texels (level 0) swept along a path pathTexels long,
     // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. On level 0 each
-    // axis then takes at least fewestTaps of it (1 to 8), within kMaxBoxTaps in all: a box shared
+    // axis then takes at least fewestTaps of it, within kMaxBoxTaps in all: a box shared
     // by that many samples a side samples the bilinear surface no coarser than they did. Lengths
     // that are not finite take the coarsest level's texel.
     BoxGrid boxGrid(float lengthX, float lengthY, float pathTexels = 0.0f, float tapsPerTexel = 1.0f, int maxPathTaps = 1,

@@ -126,7 +126,7 @@ vec2 heldUv(UvTriangle t, vec2 uv) {
 // along a path pathTexels long: the finest level where the box takes at most kMaxBoxTaps taps,
 // the path tapsPerTexel a spacing of it (at most maxPathTaps), fewer where box and path together
 // would pass kMaxSweptBoxTaps, down to two a width of the box's narrower side; on level 0 each
-// axis at least fewestTaps of it (1 to 8).
+// axis at least fewestTaps of it, within kMaxBoxTaps in all.
 const int kMaxBoxTaps = 64;
 const int kMaxSweptBoxTaps = 256;
 ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps, ivec2 fewestTaps) {
@@ -135,7 +135,6 @@ ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float t
     bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY) || isinf(pathTexels) || isnan(pathTexels));
     if (isFinite) {
         maxPathTaps = max(maxPathTaps, 1);
-        fewestTaps = clamp(fewestTaps, ivec2(1), ivec2(8));
         bool isFound = false;
         for (int l = 0; l <= maxLevel; ++l) {
             float spacing = exp2(float(l));
