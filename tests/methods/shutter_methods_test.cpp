@@ -142,11 +142,13 @@ namespace streak {
 class ShutterAgreement : public testing::TestWithParam<std::string> {};
 
 TEST_P(ShutterAgreement, EveryMethodMatchesConvergedAccumulation) {
-    // Every scene runs the same code: the sanitizers need a textured (spin) and a translucent one.
+    // Every scene runs the same code: the sanitizers need a textured (spin) and a translucent one,
+    // and each shutter once (spin under the triangle curve, translucent under the rolling one).
     if (test::kSanitized && GetParam() != "spin" && GetParam() != "translucent")
         GTEST_SKIP() << "spin and translucent run the same code under the sanitizers";
     const int width = 48, height = 36;
     for (const char* shutter : {"triangle", "rolling"}) {
+        if (test::kSanitized && (std::string(shutter) == "triangle") != (GetParam() == "spin")) continue;
         Scene scene = test::validBuiltin(GetParam());
         if (std::string(shutter) == "triangle") scene.shutter.curve = ShutterCurve::parse("triangle");
         else scene.shutter.rollingDuration = 0.25f;
