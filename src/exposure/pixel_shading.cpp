@@ -86,10 +86,11 @@ void PixelShading::formClusters(bool isBoxCentred) {
         const Pending& p = m_pending[m_order[k]];
         bool joins = false;
         if (!m_clusters.empty() && m_clusters.back().triangle == p.piece.triangle && m_clusters.back().cell == p.cell) {
-            // A still triangle's colour is the same at every time: its pieces all join.
+            // A still triangle's colour is the same at every time, and a OneColour one's at every
+            // point too: their pieces all join.
             const Cluster& c = m_clusters.back();
             const float overlap = std::min(c.t1, p.piece.t1) - p.piece.t0;
-            joins = p.isStillTextured || overlap >= kShareOverlap * std::min(p.piece.t1 - p.piece.t0, c.t1 - c.t0);
+            joins = p.joinsAll || overlap >= kShareOverlap * std::min(p.piece.t1 - p.piece.t0, c.t1 - c.t0);
         }
         if (joins) {
             Cluster& c = m_clusters.back();

@@ -3,6 +3,7 @@
 #include "exposure/shading_site.h"
 #include "exposure/visible_pieces.h"
 #include "raster/sample_pattern.h"
+#include "scene/flat_geometry.h"
 #include "scene/material.h"
 #include "scene/shading.h"
 #include "util/options.h"
@@ -47,6 +48,7 @@ struct PixelShadingOptions {
     ShadingRate rate = ShadingRate::Pixel;
     int cellsPerAxis = 4;
     bool boxFilter = true;
+    bool isUnlit = false;  ///< the render's colours are unlit (forMode): a OneColour triangle is one colour
     // The cells a side at --aa samplesPerAxis: at most cellsPerAxis (and --aa), and as few as
     // hold the same samples a side. At --aa 6 that is 3 cells of 2 x 2 samples, not 4 whose
     // cells hold one or two a side: a cell of one sample shades alone, and one of two pays for a
@@ -79,6 +81,7 @@ struct PixelShadingOptions {
     PixelShadingOptions forMode(ShadingMode mode) const {
         PixelShadingOptions o = *this;
         if (mode == ShadingMode::Normal || isVectorPass(mode)) o.rate = ShadingRate::Sample;
+        o.isUnlit = mode == ShadingMode::Unlit;
         return o;
     }
 };
@@ -92,6 +95,11 @@ enum class Sharing : std::uint8_t {
     // Textured and moving: one shading per cell, its texture filtered over the cell's samples
     // swept along the motion (a box).
     Cells,
+    // Untextured, unlit and one colour at its corners (FlatTriangle::isOneColour): its base colour
+    // times that vertex colour at every point and time, so one shading per pixel serves all its
+    // pieces, whatever their times: there is nothing along its path to smear (the time clusters
+    // below split the others).
+    OneColour,
     // Textured and still all the shutter, under a still camera: one shading per pixel, whose
     // point and texture footprint are found once and whose surface is then shaded (looked up and
     // lit) at each of its samples' own points (ShadingSite::samples), as each would alone but for
@@ -101,10 +109,11 @@ enum class Sharing : std::uint8_t {
     StillTextured,
 };
 
-// How a triangle of `material` shares, where isStill says it is still all the shutter under a
-// still camera (and its method looks up a still point's texture at its samples).
-inline Sharing sharingOf(const Material& material, bool isStill) {
-    if (material.baseColorTexture < 0) return Sharing::Pixel;
+// How `triangle` (of `material`) shares in a render whose colours are unlit or not
+// (PixelShadingOptions::isUnlit), where isStill says it is still all the shutter under a still
+// camera (and its method looks up a still point's texture at its samples).
+inline Sharing sharingOf(const Material& material, const FlatTriangle& triangle, bool isUnlit, bool isStill) {
+    if (material.baseColorTexture < 0) return isUnlit && triangle.isOneColour ? Sharing::OneColour : Sharing::Pixel;
     return isStill ? Sharing::StillTextured : Sharing::Cells;
 }
 
@@ -155,7 +164,7 @@ public:
         for (const VisiblePiece& piece : pieces) {
             const Sharing sharing = sharingOf(piece.triangle);
             m_pending.push_back({piece, std::uint32_t(sample), sharing == Sharing::Cells ? m_cell[std::size_t(sample)] : 0u,
-                                 sharing == Sharing::StillTextured});
+                                 sharing == Sharing::StillTextured, sharing == Sharing::StillTextured || sharing == Sharing::OneColour});
         }
     }
 
@@ -231,6 +240,7 @@ private:
         VisiblePiece piece;
         std::uint32_t sample = 0, cell = 0;
         bool isStillTextured = false;  ///< Sharing::StillTextured
+        bool joinsAll = false;         ///< Sharing::StillTextured or OneColour: every piece of its triangle joins its cluster
     };
     // Pieces m_order[begin..end) of one triangle, shaded as one span.
     struct Cluster {

@@ -436,7 +436,7 @@ void resolveExactTile(const raster::PixelBounds& rect, const raster::SamplePatte
     resolveTile(rect, pattern, width, height, scene.background, std::span<const glm::dvec2>(scratch.sampleNdc), std::span<const TileRecord>(scratch.bySample),
                 std::span<const std::uint32_t>(scratch.runs), scratch.list, scratch.resolve.pieces, scratch.color, scratch.coverage, image,
                 options.shading, scratch.pixelShading, scratch.counters.resolve, passes, scratch.passes,
-                [&](std::uint32_t triangle) { return sharingOf(materialOf(triangle), isStill(triangle)); },
+                [&](std::uint32_t triangle) { return sharingOf(materialOf(triangle), triangles[triangle], options.shading.isUnlit, isStill(triangle)); },
                 [&](const glm::dvec2& ndc, int row, std::vector<ExposureInterval>& list) {
         std::optional<ExactDepth> depth;
         if (exactDepth) depth = [&](std::size_t k, float t) { return (*exactDepth)(list[k].source, t, ndc); };

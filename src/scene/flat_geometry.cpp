@@ -15,8 +15,10 @@ FlatGeometry::FlatGeometry(const Scene& scene) : m_scene(scene) {
         const Mesh& mesh = scene.meshes[m];
         m_meshVertexOffset.push_back(offset);
         const bool isDoubleSided = scene.materials[mesh.material].doubleSided;
-        for (const glm::uvec3& tri : mesh.triangles)
-            m_triangles.push_back({tri + glm::uvec3(offset), m, mesh.material, isDoubleSided});
+        for (const glm::uvec3& tri : mesh.triangles) {
+            const bool isOneColour = !mesh.hasColors() || (mesh.colors[tri.x] == mesh.colors[tri.y] && mesh.colors[tri.x] == mesh.colors[tri.z]);
+            m_triangles.push_back({tri + glm::uvec3(offset), m, mesh.material, isDoubleSided, isOneColour});
+        }
         offset += std::uint32_t(mesh.numVertices());
         m_vertexMesh.resize(offset, m);
     }

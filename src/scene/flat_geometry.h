@@ -20,6 +20,9 @@ struct FlatTriangle {
     std::uint32_t mesh = 0;
     std::uint32_t material = 0;
     bool isDoubleSided = false;
+    // Its vertex colours are one colour (its mesh has none, or its three corners' are equal):
+    // untextured and unlit, it is that one colour everywhere (exposure::Sharing::OneColour).
+    bool isOneColour = true;
 };
 
 // A frame's per-triangle and per-vertex arrays: large on a dense scene, so in huge pages

@@ -189,6 +189,46 @@ TEST(PixelShading, AFastSliverIsShadedOnlyOverTheTimesItsSamplesSeeIt) {
     for (const glm::vec3& c : colors) EXPECT_EQ(c, glm::vec3(10.0f, 0.5f, 0.25f) * 0.012f);
 }
 
+TEST(PixelShading, AnUnlitTriangleOfOneColourTakesOneShadingOverAllItsTimes) {
+    // The sliver above, of one colour in an unlit render (Sharing::OneColour): nothing along its
+    // path can be smeared, so its 16 pieces at their scattered times take one shading.
+    const raster::SamplePattern pattern = raster::SamplePattern::rooks(4);
+    PixelShading shading;
+    shading.begin(pattern, glm::dvec2(0.1), 1);
+    for (int s = 0; s < 16; ++s) {
+        const float t0 = 0.2f + 0.01f * float((s * 7) % 16);
+        const VisiblePiece piece{9, t0, t0 + 0.012f, 0.012f, true};
+        shading.add(s, sampleNdc(s), std::span<const VisiblePiece>(&piece, 1), [](std::uint32_t) { return Sharing::OneColour; });
+    }
+    Recorder recorder;
+    std::vector<glm::vec3> colors(16, glm::vec3(0.0f));
+    PixelShadingCounters counters;
+    shading.finish(PixelShadingOptions{ShadingRate::Pixel}, recorder, colors, counters);
+    ASSERT_EQ(recorder.calls.size(), 1u);
+    EXPECT_FLOAT_EQ(recorder.calls[0].t0, 0.2f);
+    EXPECT_FLOAT_EQ(recorder.calls[0].t1, 0.2f + 0.15f + 0.012f);
+    EXPECT_EQ(counters.shadedSpans, 1);
+    EXPECT_EQ(counters.visibleTriangles, 1);
+    for (const glm::vec3& c : colors) EXPECT_EQ(c, glm::vec3(10.0f, 0.5f, 0.25f) * 0.012f);
+}
+
+TEST(PixelShading, OnlyAnUntexturedTriangleOfOneColourInAnUnlitRenderIsOneColour) {
+    Material untextured, textured;
+    textured.baseColorTexture = 0;
+    FlatTriangle oneColour, blended;
+    blended.isOneColour = false;
+    EXPECT_EQ(sharingOf(untextured, oneColour, true, false), Sharing::OneColour);
+    EXPECT_EQ(sharingOf(untextured, oneColour, true, true), Sharing::OneColour);
+    EXPECT_EQ(sharingOf(untextured, oneColour, false, false), Sharing::Pixel);  // lit: its normal turns
+    EXPECT_EQ(sharingOf(untextured, blended, true, false), Sharing::Pixel);     // its vertex colours blend
+    EXPECT_EQ(sharingOf(textured, oneColour, true, false), Sharing::Cells);
+    EXPECT_EQ(sharingOf(textured, oneColour, true, true), Sharing::StillTextured);
+    // The render's mode says which: unlit is, a lit or data pass is not.
+    EXPECT_TRUE(PixelShadingOptions{}.forMode(ShadingMode::Unlit).isUnlit);
+    EXPECT_FALSE(PixelShadingOptions{}.forMode(ShadingMode::Phong).isUnlit);
+    EXPECT_FALSE(PixelShadingOptions{}.forMode(ShadingMode::Normal).isUnlit);
+}
+
 TEST(PixelShading, TexturedTrianglesAreShadedPerCellUntexturedOncePerPixel) {
     const raster::SamplePattern pattern = raster::SamplePattern::rooks(4);
     for (const bool textured : {false, true}) {

@@ -137,6 +137,28 @@ TEST(PixelShadingMethods, ConstantColourTrianglesShadeExactlyAsPerSample) {
         }
 }
 
+TEST(PixelShadingMethods, AnUnlitTriangleOfOneColourIsShadedOnceAPixel) {
+    // Unlit, an untextured triangle whose vertex colours are one colour is that colour at every
+    // point and time: each pixel shades each such triangle it sees once, the blue sliver too,
+    // whose samples see it at disjoint times. Lit (its normal could turn), or with vertex colours
+    // that blend, the sliver's disjoint times still split.
+    Scene scene = constantColourScene();
+    for (const char* method : kExactMethods) {
+        RenderStats unlit, lit, blended;
+        test::render(method, scene, 32, 24, shadingOptions("pixel"), &unlit, ShadingMode::Unlit, 4);
+        test::render(method, scene, 32, 24, shadingOptions("pixel"), &lit, ShadingMode::Phong, 4);
+        EXPECT_EQ(unlit.counter("shaded_spans_per_pixel"), unlit.counter("visible_triangles_per_pixel")) << method;
+        EXPECT_GT(lit.counter("shaded_spans_per_pixel"), lit.counter("visible_triangles_per_pixel")) << method;
+        Scene coloured = scene;
+        Mesh& sliver = coloured.meshes[1];
+        sliver.colors.assign(sliver.numVertices(), glm::vec4(1.0f));
+        sliver.colors[0] = glm::vec4(0.5f, 1.0f, 1.0f, 1.0f);
+        validateScene(coloured);
+        test::render(method, coloured, 32, 24, shadingOptions("pixel"), &blended, ShadingMode::Unlit, 4);
+        EXPECT_GT(blended.counter("shaded_spans_per_pixel"), blended.counter("visible_triangles_per_pixel")) << method;
+    }
+}
+
 TEST(PixelShadingMethods, TexturedTranslatingQuadConvergesToTheBoxIntegralOverPixelAndShutter) {
     // The translating quad, per sample and per pixel in the default cells. (One cell per pixel
     // misses it by 0.042 and 2 x 2 cells by 0.015: one lookup at the pixel's centre is no box

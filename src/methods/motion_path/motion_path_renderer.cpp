@@ -770,7 +770,8 @@ private:
                 }
                 exposure::mergeAbuttingPieces(spans);
                 scratch.pixelShading.add(s, scratch.sampleNdc[i], std::span<const exposure::VisiblePiece>(spans), [&](std::uint32_t triangle) {
-                    return exposure::sharingOf(frame.scene.materials[frame.geometry.triangles()[triangle].material],
+                    const FlatTriangle& t = frame.geometry.triangles()[triangle];
+                    return exposure::sharingOf(frame.scene.materials[t.material], t, options.shading.isUnlit,
                                                !scratch.isLineTile && frame.segmented.isStillAllShutter(triangle));
                 });
             }

@@ -239,7 +239,8 @@ TEST(MotionPathGl, EachTextureFilterMatchesTheCpus) {
 // filters), at --aa 8 in 4 x 4 cells of 2 x 2 samples, and at --aa 1, whose clusters of one piece
 // shade as their sample does; rotating-cube's pixels take more clusters than one dispatch shades
 // (kClustersPerDispatch), so the later dispatches are tested. twist's still textured backdrop
-// shares one shading a pixel, each sample shaded at its own point (Sharing::StillTextured).
+// shares one shading a pixel, each sample shaded at its own point (Sharing::StillTextured), and
+// unlit, crossing's untextured triangles of one colour take one a pixel (Sharing::OneColour).
 TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
     struct Case {
         int aa;
@@ -267,20 +268,33 @@ TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
             if (std::string(name) == "rotating-cube" && c.aa == 4) { EXPECT_GT(gpuStats.counter("pixel_shading_dispatches"), 1.0) << what; }
         }
     }
+    // (Both twins at shading=pixel, 48 x 36: the images agree.)
+    auto renderBoth = [](const char* name, ShadingMode mode, int aa, RenderStats& gpuStats, RenderStats& cpuStats) {
+        const Scene scene = builtin(name);
+        const OptionMap options = test::withOption("shading", "pixel");
+        const Image gl = test::render("motion-path-gl", scene, 48, 36, options, &gpuStats, mode, aa);
+        const Image cpu = test::render("motion-path", scene, 48, 36, options, &cpuStats, mode, aa);
+        std::printf("%s --aa %d: gl vs cpu %.1f dB\n", name, aa, psnr(gl, cpu));
+        EXPECT_GE(psnr(gl, cpu), 80.0) << name;
+    };
     // A still cluster is shaded once per piece within one dispatch: at --aa 8 twist's backdrop
     // gives 64 pieces a pixel, and every pixel is still shaded within llvmpipe's 65,535 loop
     // iterations an invocation (an unshaded pixel would cost the PSNR tens of dB).
     {
-        const Scene twist = builtin("twist");
-        const OptionMap options = test::withOption("shading", "pixel");
         RenderStats gpuStats, cpuStats;
-        const Image gl = test::render("motion-path-gl", twist, 48, 36, options, &gpuStats, ShadingMode::Phong, 8);
-        const Image cpu = test::render("motion-path", twist, 48, 36, options, &cpuStats, ShadingMode::Phong, 8);
-        std::printf("twist --aa 8: gl vs cpu %.1f dB\n", psnr(gl, cpu));
-        EXPECT_GE(psnr(gl, cpu), 80.0);
+        renderBoth("twist", ShadingMode::Phong, 8, gpuStats, cpuStats);
         EXPECT_GT(cpuStats.counter("still_sample_lookups"), 0.0);
         EXPECT_EQ(gpuStats.counter("still_sample_lookups"), cpuStats.counter("still_sample_lookups"));
         EXPECT_EQ(gpuStats.counter("shaded_spans"), cpuStats.counter("shaded_spans"));
+    }
+    // Unlit, crossing's untextured triangles of one colour take one shading a pixel each,
+    // whatever the times their pieces are seen at (Sharing::OneColour), on the GPU as on the CPU.
+    {
+        RenderStats gpuStats, cpuStats;
+        renderBoth("crossing", ShadingMode::Unlit, 4, gpuStats, cpuStats);
+        EXPECT_EQ(cpuStats.counter("shaded_spans_per_pixel"), cpuStats.counter("visible_triangles_per_pixel"));
+        EXPECT_EQ(gpuStats.counter("shaded_spans"), cpuStats.counter("shaded_spans"));
+        EXPECT_NEAR(gpuStats.counter("visible_triangles_per_pixel"), cpuStats.counter("visible_triangles_per_pixel"), 1e-9);
     }
     // The option reaches the shaders: on a textured scene the shared shading is not per-sample's.
     const Scene cube = builtin("rotating-cube");

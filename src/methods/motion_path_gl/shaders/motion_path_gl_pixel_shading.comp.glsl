@@ -10,7 +10,8 @@
 // all the shutter under a still camera (kStillBit) takes one cluster a pixel, all its pieces
 // whatever their times, whose colour is the mean of its pieces' samples' own shadings weighted
 // by their exposures (the CPU's Sharing::StillTextured, which lights each at its sample with one
-// sample's footprint). Past u_maxPixelPieces a
+// sample's footprint). An untextured triangle of one colour in an unlit render also takes one
+// cluster a pixel (Sharing::OneColour). Past u_maxPixelPieces a
 // pixel's further pieces are shaded each at its sample (counted), each as a cluster of its own
 // numbered after the pixel's clusters.
 //
@@ -95,6 +96,11 @@ dvec3 clusterNdcSum[MAX_PIXEL_PIECES];  // the weighted sum of its samples' NDC,
 
 bool isTexturedTriangle(uint tri) { return materials[triangles[tri].w & kMaterialMask].info.x >= 0; }
 bool isStillTexturedTriangle(uint tri) { return (triangles[tri].w & kStillBit) != 0u && isTexturedTriangle(tri); }
+// The CPU's Sharing::OneColour: untextured, unlit, one vertex colour at its three corners.
+bool isOneColourTriangle(uint tri) {
+    uvec4 t = triangles[tri];
+    return !isTexturedTriangle(tri) && u_flags.x == 0 && vertexColor(t.x) == vertexColor(t.y) && vertexColor(t.x) == vertexColor(t.z);
+}
 
 // Whether pending piece a sorts before b: by triangle, cell, start.
 bool sortsBefore(uint a, uint b) {
@@ -165,7 +171,8 @@ void main() {
             if (pendingTriangle[p] == pendingTriangle[q] && (pendingSample[p] & 0xffffu) == (pendingSample[q] & 0xffffu)) {
                 vec2 hull = clusterSpan[numClusters - 1];
                 float overlap = min(hull.y, pendingSpan[p].y) - pendingSpan[p].x;
-                joins = isStillTexturedTriangle(pendingTriangle[p]) || overlap >= kShareOverlap * min(pendingSpan[p].y - pendingSpan[p].x, hull.y - hull.x);
+                joins = isStillTexturedTriangle(pendingTriangle[p]) || isOneColourTriangle(pendingTriangle[p]) ||
+                        overlap >= kShareOverlap * min(pendingSpan[p].y - pendingSpan[p].x, hull.y - hull.x);
             }
         }
         dvec2 ndc = sampleNdcs[pendingSample[p] >> 16];
