@@ -38,6 +38,12 @@ and animation; unlit, black background), analytic and motion-path at --aa 3 and 
 --adaptive 0.02: render time, least of the repeats, with --baseline the build before beside it
 (alternating) and the images compared (inf: the change is exact).
 
+Section shading: issue 33's shading target on CesiumMan, Fox and RiggedFigure at the ground-truth
+bench's 320x240 views, --aa 8 unlit, analytic: per-sample shading, the default (4 x 4 cells of
+2 x 2 samples for a moving textured triangle) and one cell a pixel: render and shade ms, the
+shadings and their ratio to the distinct triangles each pixel sees, and with --cycles DIR (a
+ground_truth_bench.py --out folder) the foreground PSNR against DIR/MODEL/cycles-1024.exr.
+
 Section threads: render time at --threads 1 and 2 (the ratio is the thread scaling).
 
 Section memory: peak resident memory of each method (the process's maxrss) on the profile's
@@ -50,7 +56,7 @@ Profiles of the hot functions come from perf (Debian's linux-perf), not from thi
   perf record -g build/streak render builtin:cubes -m motion-path -o x.exr
   perf report --no-children --percent-limit 1 --stdio
 
-usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,quality,budget,models,threads,memory,resolution] [--repeats 3] [--budgets 1000] [--dense-size 240x135] [--embree-ladder 8,...,1024] [--accumulation-ladder 64,256] [--plot docs]
+usage: bench/speed_bench.py [--streak build/streak] [--baseline DIR/streak] [--sections profile,static,simd,dense,quality,budget,models,shading,threads,memory,resolution] [--repeats 3] [--cycles DIR] [--budgets 1000] [--dense-size 240x135] [--embree-ladder 8,...,1024] [--accumulation-ladder 64,256] [--plot docs]
 """
 import argparse
 import glob
@@ -288,6 +294,37 @@ def models(args, tmp):
     print()
 
 
+def shading(args, tmp):
+    # Issue 33's shading target: at 320x240 --aa 8 unlit on CesiumMan, Fox and RiggedFigure (the
+    # ground-truth bench's views), at most 1.5 shadings per visible triangle and pixel, and the
+    # shading time 10x below per-sample shading.
+    from ground_truth_bench import MODELS, SCENES
+    print("### Shadings per visible triangle (320x240 --aa 8 unlit, analytic; ms least of the repeats)\n")
+    variants = [("per sample (shading=sample)", ["--option", "shading=sample"]), ("default", []),
+                ("one cell (shading-cells=1)", ["--option", "shading-cells=1"])]
+    print("| model | shading | render ms | shade ms | shaded spans | spans / visible triangles |" +
+          (" fg PSNR against Cycles |" if args.cycles else ""))
+    print("|---|---|---:|---:|---:|---:|" + ("---:|" if args.cycles else ""))
+    for name, path, flags in MODELS:
+        if name not in ("CesiumMan", "Fox", "RiggedFigure"):
+            continue
+        case_args = [os.path.join(SCENES, path), "--width", "320", "--height", "240", "--shading", "unlit", "--background", "0,0,0",
+                     "--aa", "8", "-m", "analytic"] + [f"--{k}={v}" for k, v in flags.items()]
+        if not os.path.exists(case_args[0]):
+            continue
+        for label, variant_args in variants:
+            out = os.path.join(tmp, "shading.exr")
+            runs = [run(args.streak, case_args, variant_args, out, os.path.join(tmp, "s.json"))[0] for _ in range(args.repeats)]
+            c = runs[-1]["counters"]
+            ratio = c["shaded_spans_per_pixel"] / c["visible_triangles_per_pixel"]
+            row = (f"| {name} | {label} | {min(r['time_ms']['render'] for r in runs):.0f} | {min(r['time_ms']['shade'] for r in runs):.0f} | "
+                   f"{c['shaded_spans']:,.0f} | {ratio:.2f} |")
+            if args.cycles:
+                row += f" {compare(args.streak, out, os.path.join(args.cycles, name, 'cycles-1024.exr'))[1]:.2f} dB |"
+            print(row, flush=True)
+    print()
+
+
 def threads(args, tmp):
     print("### Thread scaling (render ms, least of the repeats)\n")
     print("| scene | method | 1 thread | 2 threads | scaling |")
@@ -358,11 +395,12 @@ def main():
     parser.add_argument("--dense-size", default="240x135", help="section quality: the dense move's image size")
     parser.add_argument("--embree-ladder", default="8,32,64,128,256,512,1024", help="section quality: embree's rays per sample")
     parser.add_argument("--accumulation-ladder", default="64,256", help="section quality: accumulation's shutter times")
+    parser.add_argument("--cycles", default="", help="section shading: a ground-truth bench --out DIR, whose DIR/MODEL/cycles-1024.exr each row is scored against")
     parser.add_argument("--plot", default="")
     args = parser.parse_args()
     print(f"Machine: {machine()}.\n")
-    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "quality": quality, "budget": budget, "models": models, "threads": threads, "memory": memory,
-                "resolution": resolution}
+    sections = {"profile": profile, "static": static, "simd": simd, "dense": dense, "quality": quality, "budget": budget, "models": models,
+                "shading": shading, "threads": threads, "memory": memory, "resolution": resolution}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.sections.split(","):
             sections[name](args, tmp)
