@@ -226,8 +226,22 @@ Texture::Lookup Texture::lookupOf(const TextureFootprint& footprint) const {
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const Lookup& lookup) const {
     if (lookup.taps == 1) return trilinearAt(uv, lookup.lod);
+    // trilinearAt at each tap, its level and blend found once (the same arithmetic, tap by tap).
+    const std::vector<Level>& levels = *m_levels;
+    const float maxLod = float(levels.size() - 1);
+    const float lod = std::clamp(std::isfinite(lookup.lod) ? lookup.lod : maxLod, 0.0f, maxLod);
+    const int level = int(lod);
+    const float frac = lod - float(level);
+    const Level& fine = levels[std::size_t(level)];
+    const bool isBlended = !(frac < 1.0f / 512.0f || std::size_t(level) + 1 >= levels.size());
+    const Level& coarse = levels[std::size_t(level) + (isBlended ? 1 : 0)];
     glm::vec4 sum(0.0f);
-    for (int i = 0; i < lookup.taps; ++i) sum += trilinearAt(uv + lookup.step * (float(i) + 0.5f - 0.5f * float(lookup.taps)), lookup.lod);
+    for (int i = 0; i < lookup.taps; ++i) {
+        const glm::vec2 tap = uv + lookup.step * (float(i) + 0.5f - 0.5f * float(lookup.taps));
+        if (!(tap.x == tap.x) || !(tap.y == tap.y)) continue;  // NaN uv: no texel (adds 0)
+        const glm::vec4 a = bilinearAt(fine, tap);
+        sum += isBlended ? glm::mix(a, bilinearAt(coarse, tap), frac) : a;
+    }
     return sum / float(lookup.taps);
 }
 
