@@ -22,12 +22,15 @@ int wrapCoordinate(int i, int size, WrapMode mode) {
         return std::clamp(i, 0, size - 1);
     case WrapMode::MirroredRepeat: {
         const int period = 2 * size;
-        int m = i % period;
+        // (A power of two, as most textures are, wraps by a mask: the same index as the
+        // remainder, without a division in a lookup's hot loop.)
+        int m = (period & (period - 1)) == 0 ? i & (period - 1) : i % period;
         if (m < 0) m += period;
         return m < size ? m : period - 1 - m;
     }
     case WrapMode::Repeat:
     default: {
+        if ((size & (size - 1)) == 0) return i & (size - 1);
         int m = i % size;
         return m < 0 ? m + size : m;
     }

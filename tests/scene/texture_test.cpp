@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <array>
 #include <cstdint>
@@ -56,6 +57,27 @@ TEST(Texture, WrapModes) {
     EXPECT_FLOAT_EQ(clamp.sampleBilinear({1.25f, 0.25f}, 0).x, 1.0f);
     EXPECT_FLOAT_EQ(mirror.sampleBilinear({1.25f, 0.25f}, 0).x, 1.0f);
     EXPECT_FLOAT_EQ(repeat.sampleBilinear({-0.25f, 0.25f}, 0).x, 1.0f);
+}
+
+TEST(Texture, WrapModesAtEveryTexelOfSizesOddAndPowersOfTwo) {
+    // Texel i holds the value i: at texel centres far outside [0, 1] each mode's texel, the
+    // remainder written out here, for a width of 3 (wrapped by division) and 4 (by a mask).
+    for (const int size : {3, 4})
+        for (const WrapMode mode : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge}) {
+            std::vector<glm::vec4> texels;
+            for (int i = 0; i < size; ++i) texels.push_back(glm::vec4(float(i)));
+            const Texture tex = Texture::fromLinear(size, 1, texels, mode, mode);
+            for (int i = -3 * size - 1; i <= 3 * size + 1; ++i) {
+                int want = std::clamp(i, 0, size - 1);
+                if (mode == WrapMode::Repeat) want = ((i % size) + size) % size;
+                if (mode == WrapMode::MirroredRepeat) {
+                    const int m = ((i % (2 * size)) + 2 * size) % (2 * size);
+                    want = m < size ? m : 2 * size - 1 - m;
+                }
+                EXPECT_EQ(tex.sampleBilinear({(float(i) + 0.5f) / float(size), 0.5f}, 0).x, float(want))
+                    << "size " << size << " mode " << int(mode) << " texel " << i;
+            }
+        }
 }
 
 TEST(Texture, LodFromFootprint) {
