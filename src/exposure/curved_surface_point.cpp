@@ -30,6 +30,7 @@ CurvedSurfacePoint::CurvedSurfacePoint(const CurvedGeometry& geometry, const ras
       m_clamp(site.clampToTriangle),
       m_isBox(site.boxFootprint),
       m_boxTaps(site.boxTaps),
+      m_boxBudget(site.boxBudget),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_uv(geometry.flat().cornerUvs(geometry.flat().triangles()[triangle])),

@@ -33,6 +33,7 @@ public:
     const std::array<glm::vec2, 3>* uvTriangle() const override { return m_clamp ? &m_uv : nullptr; }
     bool hasBoxFootprint() const override { return m_isBox; }
     glm::ivec2 boxTaps() const override { return m_boxTaps; }
+    int boxBudget() const override { return m_boxBudget; }
     int materialIndex() const override;
 
 private:
@@ -43,6 +44,7 @@ private:
     bool m_clamp;       ///< barycentrics held to the triangle
     bool m_isBox;       ///< a shared shading's box footprint (ShadingSite::boxFootprint): its taps clipped, its uv not held
     glm::ivec2 m_boxTaps;  ///< ShadingSite::boxTaps
+    int m_boxBudget;       ///< ShadingSite::boxBudget
     std::uint32_t m_triangle;
     glm::dvec2 m_ndc;
     std::array<glm::vec2, 3> m_uv;

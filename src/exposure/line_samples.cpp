@@ -30,6 +30,7 @@ ShadingSite lineSite(ShadingSite site, float t0, float t1, int width) {
     site.ndc.x = left + step * 0.5 * (double(t0) + double(t1));
     site.footprintPixels.x = std::max(double(t1) - double(t0), 1.0 / 64.0);
     site.clampToTriangle = true, site.boxFootprint = true;
+    site.boxBudget = Texture::kMaxSweptBoxTaps;  // a stretch's own box, still: the whole budget at its one time
     return site;
 }
 

@@ -56,19 +56,19 @@ struct PixelShadingOptions {
     // score as with 4 within 0.2 dB but MorphStressTest (-1.2 dB), textured ones in 1.12-1.71x less
     // time (docs/BENCHMARKS.md, "Cells of equal samples").
     //
-    // At --aa 3 and 4 (kOneCellFromAa to kOneCellUpToAa) the pixel is one cell: its samples
+    // At --aa 2 to 4 (kOneCellFromAa to kOneCellUpToAa) the pixel is one cell: its samples
     // share one box over the pixel (at least as many taps a side as they span:
     // ShadingSite::boxTaps), where cells of one sample would each take their own lookup, a bell
     // of one sample spacing, whose sum over the pixel is a wider filter than the pixel's box.
     // Against Cycles (analytic, 320x240): CesiumMan +0.8 dB at --aa 3, Fox +1.2, and at --aa 4
     // every model within 0.2 dB or better; 1.2-2.5x faster on textured models (one box's taps,
     // at most Texture::kMaxSweptBoxTaps, for N^2 lookups' of up to 32 along a long path). At
-    // --aa 2 one box is 0.8x as fast on minified textures (CesiumMan, builtin:cubes at
-    // 1024x768) for 1.2-1.7 dB: the 4 lookups stay, the faster way to 40 dB. Past --aa 4, one
-    // box over 25 or more samples blurs what its cells keep (its level follows its longer axis):
-    // CesiumMan at --aa 6 and 8 loses 1.3-1.7 dB with one cell (docs/BENCHMARKS.md, "One cell
-    // at --aa 3 and 4").
-    static constexpr int kOneCellFromAa = 3, kOneCellUpToAa = 4;
+    // --aa 2 the box takes a quarter of that budget (boxBudgetOf), about its four samples'
+    // lookups: with the whole one it was 0.8x as fast as they on minified textures. Past --aa 4,
+    // one box over 25 or more samples blurs what its cells keep (its level follows its longer
+    // axis): CesiumMan at --aa 6 and 8 loses 1.3-1.7 dB with one cell (docs/BENCHMARKS.md, "One
+    // cell at --aa 3 and 4" and "One cell at --aa 2").
+    static constexpr int kOneCellFromAa = 2, kOneCellUpToAa = 4;
     int cellsFor(int samplesPerAxis) const {
         if (samplesPerAxis >= kOneCellFromAa && samplesPerAxis <= kOneCellUpToAa) return 1;
         const int most = std::max(1, std::min(cellsPerAxis, samplesPerAxis));
@@ -221,7 +221,7 @@ public:
             } else {
                 color = shade(cluster.triangle, cluster.t0, cluster.t1,
                               ShadingSite{cluster.ndc, cluster.footprintPixels, true, options.boxFilter,
-                                          boxTapsOf(cluster.footprintPixels, m_samplesPerAxis)})
+                                          boxTapsOf(cluster.footprintPixels, m_samplesPerAxis), boxBudgetOf(m_samplesPerAxis, m_cellsPerAxis)})
                             .color;
             }
             for (std::uint32_t k = cluster.begin; k < cluster.end; ++k) {

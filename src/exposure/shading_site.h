@@ -1,6 +1,7 @@
 #pragma once
 
 #include "scene/barycentric.h"
+#include "scene/texture.h"
 
 #include <glm/vec2.hpp>
 #include <glm/common.hpp>
@@ -39,6 +40,10 @@ struct ShadingSite {
     // integrates the bilinear surface across it as its samples' own lookups did, and is no
     // coarser a filter than they were. One where the box stands for no samples.
     glm::ivec2 boxTaps{1};
+    // The most taps a box takes over its span, all its times together, a quarter of them at one
+    // time (Texture::boxGrid's budget): Texture::kMaxSweptBoxTaps, but where a pixel of 2 x 2
+    // samples shares one box (boxBudgetOf).
+    int boxBudget = Texture::kMaxSweptBoxTaps;
     // A still textured triangle's shading shared by the samples of a pixel that see it
     // (PixelShading, Sharing::StillTextured): the point at `ndc` (one of them) gives the texture
     // footprint of one sample spacing, found once, and the surface is shaded (looked up and lit)
@@ -55,6 +60,20 @@ inline constexpr int kMaxBoxTapsASide = 8;
 inline glm::ivec2 boxTapsOf(const glm::dvec2& footprintPixels, int samplesPerAxis) {
     const glm::dvec2 samples = glm::floor(footprintPixels * double(samplesPerAxis) + 0.5);
     return glm::clamp(glm::ivec2(samples), glm::ivec2(1), glm::ivec2(kMaxBoxTapsASide));
+}
+
+// A box's budget of taps (ShadingSite::boxBudget) where a pixel of samplesPerAxis x
+// samplesPerAxis samples is shaded in cellsPerAxis x cellsPerAxis cells: a pixel of 2 x 2
+// samples that shares one box takes a quarter of the budget (16 taps at a time, 64 in all), about
+// what its four samples' own lookups took. With the whole budget one box a pixel was 0.8x as fast
+// as the four lookups on minified textures (builtin:cubes at 1024x768); with a quarter it is
+// 1.4-1.5x as fast as them there, and closer to Cycles on the textured models (cubes +0.9 dB,
+// Fox +1.1, AnimatedCube +0.5, CesiumMan +0.2; docs/BENCHMARKS.md, "One cell at --aa 2"). More
+// samples keep the whole budget: a box over 3 x 3 samples with less (36 at a time, 144 in all)
+// lost CesiumMan and Fox 0.4-0.6 dB.
+inline constexpr int kPixelOfFourBoxTaps = Texture::kMaxSweptBoxTaps / 4;
+inline int boxBudgetOf(int samplesPerAxis, int cellsPerAxis) {
+    return cellsPerAxis == 1 && samplesPerAxis == 2 ? kPixelOfFourBoxTaps : Texture::kMaxSweptBoxTaps;
 }
 
 // Where one sample shades alone, at --aa samplesPerAxis: its own point and sample spacing.

@@ -294,7 +294,7 @@ ShadedColor shadeTimeSpan(const Scene& scene, ShadingMode mode, float t0, float 
         float lengthX = 0.0f, lengthY = 0.0f;
         for (const SurfacePoint& end : ends)
             lengthX = std::max(lengthX, glm::length(end.duvdx * size)), lengthY = std::max(lengthY, glm::length(end.duvdy * size));
-        boxGrid = texture.boxGrid(lengthX, lengthY, pathTexels, settings.tapsPerTexel, settings.maxTextureTaps, point.boxTaps());
+        boxGrid = texture.boxGrid(lengthX, lengthY, pathTexels, settings.tapsPerTexel, settings.maxTextureTaps, point.boxTaps(), point.boxBudget());
     }
     const int taps = isBox ? boxGrid.tapsAlong : std::clamp(int(std::ceil(settings.tapsPerTexel * pathTexels / spacing)), 1, settings.maxTextureTaps);
     // The level the path's length asks for (k taps along it; the lookup keeps level 0 as floor).

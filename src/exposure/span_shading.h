@@ -49,6 +49,8 @@ public:
     virtual bool hasBoxFootprint() const { return false; }
     // A box footprint's fewest taps a side (ShadingSite::boxTaps).
     virtual glm::ivec2 boxTaps() const { return glm::ivec2(1); }
+    // A box footprint's budget of taps (ShadingSite::boxBudget).
+    virtual int boxBudget() const { return Texture::kMaxSweptBoxTaps; }
 
     // True when nothing the point is shaded from changes over [t0, t1] (its position, normal,
     // uv and footprint, and the eye): one instant then shades the whole span. False where the

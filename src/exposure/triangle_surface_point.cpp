@@ -13,6 +13,7 @@ TriangleSurfacePoint::TriangleSurfacePoint(const SegmentedGeometry& geometry, co
       m_clamp(site.clampToTriangle),
       m_isBox(site.boxFootprint),
       m_boxTaps(site.boxTaps),
+      m_boxBudget(site.boxBudget),
       m_triangle(triangle),
       m_ndc(site.ndc),
       m_samples(site.samples),

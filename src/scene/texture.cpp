@@ -249,13 +249,16 @@ glm::vec4 Texture::sample(const glm::vec2& uv, const Lookup& lookup) const {
 }
 
 Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps,
-                                  glm::ivec2 fewestTaps) const {
+                                  glm::ivec2 fewestTaps, int budget) const {
+    // A quarter of the budget at one time: kMaxBoxTaps of kMaxSweptBoxTaps.
+    budget = std::clamp(budget, 4, kMaxSweptBoxTaps);
+    const int mostAtOnce = budget / 4;
     const int maxLevel = numLevels() - 1;
     if (!std::isfinite(lengthX) || !std::isfinite(lengthY) || !std::isfinite(pathTexels)) return {maxLevel, 1, 1, 1};
-    // (At most kMaxBoxTaps + 1 an axis, which is as good as any more for the test below: an edge-on
+    // (At most mostAtOnce + 1 an axis, which is as good as any more for the test below: an edge-on
     // triangle's footprint can be a million texels long, whose taps overflow an int.)
-    auto tapsAlong = [](float length, float spacing) {
-        return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(kMaxBoxTaps + 1))));
+    auto tapsAlong = [&](float length, float spacing) {
+        return std::max(1, int(std::min(std::ceil(length / spacing - 1e-3f), float(mostAtOnce + 1))));
     };
     maxPathTaps = std::max(maxPathTaps, 1);
     BoxGrid grid;
@@ -266,20 +269,20 @@ Texture::BoxGrid Texture::boxGrid(float lengthX, float lengthY, float pathTexels
         grid.tapsAlong = std::clamp(int(std::ceil(std::min(tapsPerTexel * pathTexels / spacing, float(maxPathTaps)))), 1, maxPathTaps);
     };
     // The box's own level: the finest (spacing 2^level texels) at which both axes take at most
-    // kMaxBoxTaps taps in all, each axis as many taps as it is spacings long, at least one.
-    for (at(0); grid.tapsX * grid.tapsY > kMaxBoxTaps && grid.level < maxLevel;) at(grid.level + 1);
-    grid.tapsX = std::min(grid.tapsX, kMaxBoxTaps), grid.tapsY = std::min(grid.tapsY, kMaxBoxTaps / grid.tapsX);
-    // On level 0 the fewest taps a side, within kMaxBoxTaps: there a box narrower than the taps'
+    // mostAtOnce taps in all, each axis as many taps as it is spacings long, at least one.
+    for (at(0); grid.tapsX * grid.tapsY > mostAtOnce && grid.level < maxLevel;) at(grid.level + 1);
+    grid.tapsX = std::min(grid.tapsX, mostAtOnce), grid.tapsY = std::min(grid.tapsY, mostAtOnce / grid.tapsX);
+    // On level 0 the fewest taps a side, within mostAtOnce: there a box narrower than the taps'
     // count of texels takes more taps of the bilinear surface than texels. On a coarser level the
     // box's longer axis set the level, and more taps across the shorter one on its wide texels
     // would only widen the filter (never a coarser level for them either).
     if (grid.level == 0) {
-        grid.tapsX = std::max(grid.tapsX, std::min(fewestTaps.x, kMaxBoxTaps / grid.tapsY));
-        grid.tapsY = std::max(grid.tapsY, std::min(fewestTaps.y, kMaxBoxTaps / grid.tapsX));
+        grid.tapsX = std::max(grid.tapsX, std::min(fewestTaps.x, mostAtOnce / grid.tapsY));
+        grid.tapsY = std::max(grid.tapsY, std::min(fewestTaps.y, mostAtOnce / grid.tapsX));
     }
-    // Fewer times past kMaxSweptBoxTaps, but at least two a width of the box's narrower side.
+    // Fewer times past the budget, but at least two a width of the box's narrower side.
     const int covering = int(std::ceil(std::min(2.0f * pathTexels / std::max(std::min(lengthX, lengthY), 1e-6f), float(maxPathTaps))));
-    grid.tapsAlong = std::min(grid.tapsAlong, std::max({1, covering, kMaxSweptBoxTaps / (grid.tapsX * grid.tapsY)}));
+    grid.tapsAlong = std::min(grid.tapsAlong, std::max({1, covering, budget / (grid.tapsX * grid.tapsY)}));
     return grid;
 }
 

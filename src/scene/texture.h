@@ -115,16 +115,19 @@ public:
     // alias: 256 taps in all lost 0.7 dB against Cycles on builtin:cubes; raising the level
     // instead blurs across the motion (AnimatedCube at one shading a pixel: 2 dB). docs/BENCHMARKS.md.
     static constexpr int kMaxSweptBoxTaps = 256;
+    static_assert(kMaxBoxTaps * 4 == kMaxSweptBoxTaps, "a box takes a quarter of its budget at one time");
     struct BoxGrid {
         int level = 0, tapsX = 1, tapsY = 1, tapsAlong = 1;
     };
     // The grid of a box lengthX x lengthY texels (level 0) swept along a path pathTexels long,
-    // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. On level 0 each
-    // axis then takes at least fewestTaps of it, within kMaxBoxTaps in all: a box shared
+    // its times in [1, maxPathTaps]; without a path (pathTexels 0) the box's own. `budget` is the
+    // most taps in all (kMaxSweptBoxTaps, or less where few samples share the box), a quarter of
+    // it at one time (kMaxBoxTaps of kMaxSweptBoxTaps). On level 0 each
+    // axis then takes at least fewestTaps of it, within that quarter: a box shared
     // by that many samples a side samples the bilinear surface no coarser than they did. Lengths
     // that are not finite take the coarsest level's texel.
     BoxGrid boxGrid(float lengthX, float lengthY, float pathTexels = 0.0f, float tapsPerTexel = 1.0f, int maxPathTaps = 1,
-                    glm::ivec2 fewestTaps = glm::ivec2(1)) const;
+                    glm::ivec2 fewestTaps = glm::ivec2(1), int budget = kMaxSweptBoxTaps) const;
     // One time's box on `grid` (sampleBox is this on its own box's grid).
     glm::vec4 sampleBox(const glm::vec2& uv, const TextureFootprint& footprint, const BoxGrid& grid, float* inside = nullptr) const;
     // The level of the anisotropic taps for a footprint (minLod 0): the finest detail a lookup

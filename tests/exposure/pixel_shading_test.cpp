@@ -251,13 +251,13 @@ TEST(PixelShading, TexturedTrianglesAreShadedPerCellUntexturedOncePerPixel) {
 
 // The cells a side are at most shading-cells (4) and --aa, and as few as hold the same samples a
 // side: at --aa 6, 3 x 3 cells of 2 x 2 samples each shade once, where 4 x 4 cells would hold
-// one or two samples a side (16 shadings, most of them boxes shared by two). At --aa 3 and 4 the
+// one or two samples a side (16 shadings, most of them boxes shared by two). At --aa 2 to 4 the
 // pixel is one cell (kOneCellFromAa, kOneCellUpToAa): its samples share one box rather than each
-// take a lookup.
+// take a lookup, at --aa 2 a box of a quarter of the budget (boxBudgetOf).
 TEST(PixelShading, EachCellHoldsAsManySamplesASideAsTheCellsAllow) {
     const PixelShadingOptions options;
-    static_assert(PixelShadingOptions::kOneCellFromAa == 3 && PixelShadingOptions::kOneCellUpToAa == 4);
-    const int expected[] = {0, 1, 2, 1, 1, 3, 3, 4, 4, 3, 4, 4, 4, 4, 4, 4, 4};
+    static_assert(PixelShadingOptions::kOneCellFromAa == 2 && PixelShadingOptions::kOneCellUpToAa == 4);
+    const int expected[] = {0, 1, 1, 1, 1, 3, 3, 4, 4, 3, 4, 4, 4, 4, 4, 4, 4};
     for (int n = 1; n <= 16; ++n) {
         const int cells = options.cellsFor(n);
         EXPECT_EQ(cells, expected[n]) << "--aa " << n;
@@ -277,16 +277,20 @@ TEST(PixelShading, EachCellHoldsAsManySamplesASideAsTheCellsAllow) {
         // samples it holds.
         EXPECT_EQ(recorder.calls.size(), std::size_t(cells * cells)) << "--aa " << n;
         const int perCell = (n + cells - 1) / cells;
-        for (const Call& call : recorder.calls) EXPECT_LE(call.site.footprintPixels.x, double(perCell) / n + 1e-9) << "--aa " << n;
+        for (const Call& call : recorder.calls) {
+            EXPECT_LE(call.site.footprintPixels.x, double(perCell) / n + 1e-9) << "--aa " << n;
+            // The box's budget: a quarter where one box serves a pixel of 2 x 2 samples, else all.
+            if (n > 1) { EXPECT_EQ(call.site.boxBudget, n == 2 ? Texture::kMaxSweptBoxTaps / 4 : Texture::kMaxSweptBoxTaps) << "--aa " << n; }
+        }
     }
     // An explicit count is a most: 2 at --aa 8 is 2 cells of 4 x 4, 3 is 3 of up to 3 x 3; and
-    // at --aa 3 and 4 one cell whatever the count.
+    // at --aa 2 to 4 one cell whatever the count.
     PixelShadingOptions two, three;
     two.cellsPerAxis = 2, three.cellsPerAxis = 3;
     EXPECT_EQ(two.cellsFor(8), 2);
     EXPECT_EQ(three.cellsFor(8), 3);
     EXPECT_EQ(three.cellsFor(5), 3);
-    EXPECT_EQ(three.cellsFor(2), 2);
+    EXPECT_EQ(three.cellsFor(2), 1);
     EXPECT_EQ(three.cellsFor(4), 1);
 }
 

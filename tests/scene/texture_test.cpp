@@ -281,6 +281,28 @@ TEST(TextureFootprint, ABoxSharedByManySamplesTakesAsManyTapsOnAMagnifiedTexture
     EXPECT_EQ(wideFour.tapsY, wide.tapsY);
 }
 
+// A box's budget (boxGrid's last argument): a quarter of it at one time, all of it over its
+// times. A still box 12 texels a side takes level 1 (6 x 6 = 36 taps; level 0 would be 144) with
+// the whole budget, level 2 (3 x 3) with a quarter (16 at a time); swept along a path 40
+// texels long it takes at most budget / taps times, but always the covering ones (two a width).
+TEST(TextureFootprint, ABoxTakesAQuarterOfItsBudgetAtATimeAndItAllOverItsPath) {
+    const Texture tex = checksAndBorders();
+    for (const int budget : {Texture::kMaxSweptBoxTaps, Texture::kMaxSweptBoxTaps / 4}) {
+        const Texture::BoxGrid still = tex.boxGrid(12.0f, 12.0f, 0.0f, 1.0f, 1, glm::ivec2(1), budget);
+        EXPECT_LE(still.tapsX * still.tapsY, budget / 4) << budget;
+        EXPECT_EQ(still.level, budget == Texture::kMaxSweptBoxTaps ? 1 : 2) << budget;
+        EXPECT_EQ(still.tapsX, budget == Texture::kMaxSweptBoxTaps ? 6 : 3) << budget;
+        const Texture::BoxGrid swept = tex.boxGrid(12.0f, 12.0f, 40.0f, 2.0f, 32, glm::ivec2(1), budget);
+        EXPECT_EQ(swept.level, still.level) << budget;
+        const int covering = 7;  // ceil(2 * 40 / 12)
+        EXPECT_EQ(swept.tapsAlong, std::max(covering, budget / (swept.tapsX * swept.tapsY))) << budget;
+    }
+    // The default is the whole budget.
+    const Texture::BoxGrid plain = tex.boxGrid(12.0f, 12.0f), whole = tex.boxGrid(12.0f, 12.0f, 0.0f, 1.0f, 1, glm::ivec2(1), Texture::kMaxSweptBoxTaps);
+    EXPECT_EQ(plain.level, whole.level);
+    EXPECT_EQ(plain.tapsX, whole.tapsX);
+}
+
 // Clipped to a uv triangle, a box averages only the texels inside it, and says how much of the
 // box that is: on the texture of an atlas, a triangle whose edge crosses the box must not see
 // the texels beyond its edge. Brute force over box and triangle is the reference.

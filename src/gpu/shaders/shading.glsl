@@ -123,13 +123,16 @@ vec2 heldUv(UvTriangle t, vec2 uv) {
 }
 
 // Texture::boxGrid: (level, tapsX, tapsY, tapsAlong) for a box lengthX x lengthY texels swept
-// along a path pathTexels long: the finest level where the box takes at most kMaxBoxTaps taps,
-// the path tapsPerTexel a spacing of it (at most maxPathTaps), fewer where box and path together
-// would pass kMaxSweptBoxTaps, down to two a width of the box's narrower side; on level 0 each
-// axis at least fewestTaps of it, within kMaxBoxTaps in all.
+// along a path pathTexels long: the finest level where the box takes at most a quarter of
+// `budget` (kMaxSweptBoxTaps, or exposure::boxBudgetOf's less) taps, the path tapsPerTexel a
+// spacing of it (at most maxPathTaps), fewer where box and path together would pass the budget,
+// down to two a width of the box's narrower side; on level 0 each axis at least fewestTaps of
+// it, within that quarter in all.
 const int kMaxBoxTaps = 64;
 const int kMaxSweptBoxTaps = 256;
-ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps, ivec2 fewestTaps) {
+ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps, ivec2 fewestTaps, int budget) {
+    budget = clamp(budget, 4, kMaxSweptBoxTaps);
+    int mostAtOnce = budget / 4;
     int maxLevel = textureLevelsOf(index) - 1;
     ivec4 grid = ivec4(maxLevel, 1, 1, 1);
     bool isFinite = !(isinf(lengthX) || isnan(lengthX) || isinf(lengthY) || isnan(lengthY) || isinf(pathTexels) || isnan(pathTexels));
@@ -138,23 +141,23 @@ ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float t
         bool isFound = false;
         for (int l = 0; l <= maxLevel; ++l) {
             float spacing = exp2(float(l));
-            // (At most kMaxBoxTaps + 1 an axis, as Texture::boxGrid: no int overflows.)
-            int x = max(1, int(min(ceil(lengthX / spacing - 1e-3), float(kMaxBoxTaps + 1))));
-            int y = max(1, int(min(ceil(lengthY / spacing - 1e-3), float(kMaxBoxTaps + 1))));
+            // (At most mostAtOnce + 1 an axis, as Texture::boxGrid: no int overflows.)
+            int x = max(1, int(min(ceil(lengthX / spacing - 1e-3), float(mostAtOnce + 1))));
+            int y = max(1, int(min(ceil(lengthY / spacing - 1e-3), float(mostAtOnce + 1))));
             int t = clamp(int(ceil(min(tapsPerTexel * pathTexels / spacing, float(maxPathTaps)))), 1, maxPathTaps);
             if (!isFound) {
                 grid = ivec4(l, x, y, t);
-                isFound = x * y <= kMaxBoxTaps;
+                isFound = x * y <= mostAtOnce;
             }
         }
-        grid.y = min(grid.y, kMaxBoxTaps);
-        grid.z = min(grid.z, kMaxBoxTaps / grid.y);
+        grid.y = min(grid.y, mostAtOnce);
+        grid.z = min(grid.z, mostAtOnce / grid.y);
         if (grid.x == 0) {
-            grid.y = max(grid.y, min(fewestTaps.x, kMaxBoxTaps / grid.z));
-            grid.z = max(grid.z, min(fewestTaps.y, kMaxBoxTaps / grid.y));
+            grid.y = max(grid.y, min(fewestTaps.x, mostAtOnce / grid.z));
+            grid.z = max(grid.z, min(fewestTaps.y, mostAtOnce / grid.y));
         }
         int covering = int(ceil(min(2.0 * pathTexels / max(min(lengthX, lengthY), 1e-6), float(maxPathTaps))));
-        grid.w = min(grid.w, max(max(1, covering), kMaxSweptBoxTaps / (grid.y * grid.z)));
+        grid.w = min(grid.w, max(max(1, covering), budget / (grid.y * grid.z)));
     }
     return grid;
 }

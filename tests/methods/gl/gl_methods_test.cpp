@@ -235,8 +235,9 @@ TEST(MotionPathGl, EachTextureFilterMatchesTheCpus) {
 // shading=pixel on the GPU (motion_path_gl_pixel_shading): the pixel's pieces gathered, sorted,
 // cut into the same time clusters and shaded once each as exposure::PixelShading does, so the
 // images agree to float rounding and so do the shadings and the distinct triangles counted. On
-// textured scenes at --aa 4 in one cell a pixel (the default at --aa 3 and 4; box and lookup
-// filters), at --aa 8 in 4 x 4 cells of 2 x 2 samples, and at --aa 1, whose clusters of one piece
+// textured scenes at --aa 4 in one cell a pixel (the default at --aa 2 to 4; box and lookup
+// filters), at --aa 2 (one box of a quarter of the budget), at --aa 8 in 4 x 4 cells of 2 x 2
+// samples, and at --aa 1, whose clusters of one piece
 // shade as their sample does; rotating-cube's pixels take more clusters than one dispatch shades
 // (kClustersPerDispatch), so the later dispatches are tested. twist's still textured backdrop
 // shares one shading a pixel, each sample shaded at its own point (Sharing::StillTextured), and
@@ -248,7 +249,7 @@ TEST(MotionPathGl, ShadingPerPixelMatchesTheCpus) {
     };
     for (const char* name : {"rotating-cube", "twist", "translucent"}) {
         const Scene scene = builtin(name);
-        for (const Case c : {Case{4, "box"}, Case{4, "lookup"}, Case{8, "box"}, Case{1, "box"}}) {
+        for (const Case c : {Case{4, "box"}, Case{4, "lookup"}, Case{8, "box"}, Case{1, "box"}, Case{2, "box"}}) {
             if (c.aa == 8 && std::string(name) == "twist") continue;  // below, with its still lookups
             OptionMap options = test::withOption("shading", "pixel");
             options.set("shading-filter", c.filter);

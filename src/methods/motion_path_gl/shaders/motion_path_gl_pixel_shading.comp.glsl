@@ -248,7 +248,7 @@ void main() {
                 dvec3 sum = clusterNdcSum[c];
                 dvec2 ndc = u_boxFilter != 0 ? 0.5 * (lo + hi) : sum.z > 0.0 ? sum.xy / sum.z : sampleNdcs[pendingSample[first] >> 16];
                 dvec2 footprint = min(dvec2(1.0 / double(u_shadingCells)), abs(hi - lo) / pixelNdc + dvec2(1.0 / double(n)));
-                site = ShadingSite(ndc, footprint, true, u_boxFilter != 0, boxTapsOf(footprint, n));
+                site = ShadingSite(ndc, footprint, true, u_boxFilter != 0, boxTapsOf(footprint, n), boxBudgetOf(n, u_shadingCells));
             }
         }
         // (One call of shadeTimeSpanAt, for a still cluster once a piece, at the piece's sample.)

@@ -21,6 +21,7 @@ struct ShadingSite {
     bool clampToTriangle;
     bool boxFootprint;
     ivec2 boxTaps;  // a box's fewest taps a side (exposure::boxTapsOf)
+    int boxBudget;  // a box's most taps in all (exposure::boxBudgetOf)
 };
 
 // exposure::boxTapsOf: the samples a box over footprintPixels spans a side, 1 to 8.
@@ -28,8 +29,11 @@ ivec2 boxTapsOf(dvec2 footprintPixels, int samplesPerAxis) {
     return clamp(ivec2(floor(footprintPixels * double(samplesPerAxis) + 0.5)), ivec2(1), ivec2(8));
 }
 
+// exposure::boxBudgetOf: a pixel of 2 x 2 samples sharing one box takes a quarter of the budget.
+int boxBudgetOf(int samplesPerAxis, int cellsPerAxis) { return cellsPerAxis == 1 && samplesPerAxis == 2 ? kMaxSweptBoxTaps / 4 : kMaxSweptBoxTaps; }
+
 // One sample alone (exposure::sampleSite): one sample spacing.
-ShadingSite sampleSite(dvec2 ndc) { return ShadingSite(ndc, dvec2(1.0 / double(u_flags.y)), false, false, ivec2(1)); }
+ShadingSite sampleSite(dvec2 ndc) { return ShadingSite(ndc, dvec2(1.0 / double(u_flags.y)), false, false, ivec2(1), kMaxSweptBoxTaps); }
 
 // A triangle under a site, with the segment last used (taps come in time order).
 struct SpanPoint {
@@ -246,7 +250,7 @@ vec4 shadeTimeSpanAt(uint tri, float t0, float t1, ShadingSite site) {
             lengthX = max(lengthX, length(ends[i].duvdx * size));
             lengthY = max(lengthY, length(ends[i].duvdy * size));
         }
-        grid = boxGrid(tex, lengthX, lengthY, pathTexels, u_tapsPerTexel, u_textureSamples, site.boxTaps);
+        grid = boxGrid(tex, lengthX, lengthY, pathTexels, u_tapsPerTexel, u_textureSamples, site.boxTaps, site.boxBudget);
         numTaps = grid.w;
     }
     vec2 from = ends[0].uv;

@@ -17,5 +17,5 @@ void main() {
     if (i >= uint(probes.length())) return;
     ShadingProbe p = probes[i];
     shaded[i] = shadeTimeSpanAt(p.triangle, p.t0, p.t1,
-                                ShadingSite(p.ndc, dvec2(p.footprintPixels), (p.flags & 1u) != 0u, (p.flags & 2u) != 0u, ivec2(1)));
+                                ShadingSite(p.ndc, dvec2(p.footprintPixels), (p.flags & 1u) != 0u, (p.flags & 2u) != 0u, ivec2(1), kMaxSweptBoxTaps));
 }
