@@ -86,18 +86,17 @@ void PixelShading::formClusters(bool isBoxCentred) {
         const Pending& p = m_pending[m_order[k]];
         bool joins = false;
         if (!m_clusters.empty() && m_clusters.back().triangle == p.piece.triangle && m_clusters.back().cell == p.cell) {
-            // A still triangle's colour is the same at every time, and a OneColour one's at every
-            // point too: their pieces all join.
             const Cluster& c = m_clusters.back();
             const float overlap = std::min(c.t1, p.piece.t1) - p.piece.t0;
-            joins = p.joinsAll || overlap >= kShareOverlap * std::min(p.piece.t1 - p.piece.t0, c.t1 - c.t0);
+            joins = p.joinsAll() || overlap >= kShareOverlap * std::min(p.piece.t1 - p.piece.t0, c.t1 - c.t0);
         }
         if (joins) {
             Cluster& c = m_clusters.back();
             c.t1 = std::max(c.t1, p.piece.t1), c.end = k + 1;
         } else {
             if (!m_clusters.empty()) close();
-            m_clusters.push_back({p.piece.triangle, p.cell, k, k + 1, p.piece.t0, p.piece.t1, glm::dvec2(0.0), glm::dvec2(1.0), p.isStillTextured});
+            m_clusters.push_back({p.piece.triangle, p.cell, k, k + 1, p.piece.t0, p.piece.t1, glm::dvec2(0.0), glm::dvec2(1.0),
+                                  p.sharing == Sharing::StillTextured});
             ndcSum = glm::dvec2(0.0), weightSum = 0.0;
             lo = hi = m_ndc[p.sample];
         }

@@ -35,7 +35,7 @@ enum class ShadingRate {
 
 // The exact methods' shading options: `shading=pixel|sample` (pixel; against Cycles,
 // docs/BENCHMARKS.md) and `shading-cells=G` (4):
-// at ShadingRate::Pixel a textured triangle is shaded once per pixel at --aa 3 and 4, and else
+// at ShadingRate::Pixel a textured triangle is shaded once per pixel at --aa 2 to 4, and else
 // in G x G cells of the pixel (at most --aa N per axis, and as few as hold as many samples a side:
 // PixelShadingOptions::cellsFor), each shared by the samples that fall in it; an untextured one
 // once per pixel.
@@ -163,8 +163,7 @@ public:
         m_ndc[std::size_t(sample)] = ndc;
         for (const VisiblePiece& piece : pieces) {
             const Sharing sharing = sharingOf(piece.triangle);
-            m_pending.push_back({piece, std::uint32_t(sample), sharing == Sharing::Cells ? m_cell[std::size_t(sample)] : 0u,
-                                 sharing == Sharing::StillTextured, sharing == Sharing::StillTextured || sharing == Sharing::OneColour});
+            m_pending.push_back({piece, std::uint32_t(sample), sharing == Sharing::Cells ? m_cell[std::size_t(sample)] : 0u, sharing});
         }
     }
 
@@ -239,8 +238,10 @@ private:
     struct Pending {
         VisiblePiece piece;
         std::uint32_t sample = 0, cell = 0;
-        bool isStillTextured = false;  ///< Sharing::StillTextured
-        bool joinsAll = false;         ///< Sharing::StillTextured or OneColour: every piece of its triangle joins its cluster
+        Sharing sharing = Sharing::Pixel;
+        // Every piece of its triangle joins its cluster whatever its times: a still triangle's
+        // colour is the same at every time, and a OneColour one's at every point too.
+        bool joinsAll() const { return sharing == Sharing::StillTextured || sharing == Sharing::OneColour; }
     };
     // Pieces m_order[begin..end) of one triangle, shaded as one span.
     struct Cluster {

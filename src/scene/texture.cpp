@@ -124,17 +124,23 @@ glm::vec4 Texture::sampleBilinear(const glm::vec2& uv, int level) const {
     return bilinearAt((*m_levels)[std::clamp(level, 0, numLevels() - 1)], uv);
 }
 
-[[gnu::always_inline]] inline glm::vec4 Texture::trilinearAt(const glm::vec2& uv, float lod) const {
-    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
+[[gnu::always_inline]] inline Texture::LevelBlend Texture::levelBlendOf(float lod) const {
     const std::vector<Level>& levels = *m_levels;
     const float maxLod = float(levels.size() - 1);
     lod = std::clamp(std::isfinite(lod) ? lod : maxLod, 0.0f, maxLod);
     const int level = int(lod);
     const float frac = lod - float(level);
-    const glm::vec4 a = bilinearAt(levels[std::size_t(level)], uv);
-    if (frac < 1.0f / 512.0f || std::size_t(level) + 1 >= levels.size()) return a;
-    return glm::mix(a, bilinearAt(levels[std::size_t(level) + 1], uv), frac);
+    const bool isBlended = !(frac < 1.0f / 512.0f || std::size_t(level) + 1 >= levels.size());
+    return {&levels[std::size_t(level)], isBlended ? &levels[std::size_t(level) + 1] : nullptr, frac};
 }
+
+[[gnu::always_inline]] inline glm::vec4 Texture::trilinearAt(const glm::vec2& uv, const LevelBlend& blend) const {
+    if (!(uv.x == uv.x) || !(uv.y == uv.y)) return glm::vec4(0.0f);  // NaN uv: no texel
+    const glm::vec4 a = bilinearAt(*blend.fine, uv);
+    return blend.coarse ? glm::mix(a, bilinearAt(*blend.coarse, uv), blend.frac) : a;
+}
+
+[[gnu::always_inline]] inline glm::vec4 Texture::trilinearAt(const glm::vec2& uv, float lod) const { return trilinearAt(uv, levelBlendOf(lod)); }
 
 glm::vec4 Texture::sample(const glm::vec2& uv, float lod) const { return trilinearAt(uv, lod); }
 
@@ -229,22 +235,10 @@ Texture::Lookup Texture::lookupOf(const TextureFootprint& footprint) const {
 
 glm::vec4 Texture::sample(const glm::vec2& uv, const Lookup& lookup) const {
     if (lookup.taps == 1) return trilinearAt(uv, lookup.lod);
-    // trilinearAt at each tap, its level and blend found once (the same arithmetic, tap by tap).
-    const std::vector<Level>& levels = *m_levels;
-    const float maxLod = float(levels.size() - 1);
-    const float lod = std::clamp(std::isfinite(lookup.lod) ? lookup.lod : maxLod, 0.0f, maxLod);
-    const int level = int(lod);
-    const float frac = lod - float(level);
-    const Level& fine = levels[std::size_t(level)];
-    const bool isBlended = !(frac < 1.0f / 512.0f || std::size_t(level) + 1 >= levels.size());
-    const Level& coarse = levels[std::size_t(level) + (isBlended ? 1 : 0)];
+    // The taps share a level and blend, found once.
+    const LevelBlend blend = levelBlendOf(lookup.lod);
     glm::vec4 sum(0.0f);
-    for (int i = 0; i < lookup.taps; ++i) {
-        const glm::vec2 tap = uv + lookup.step * (float(i) + 0.5f - 0.5f * float(lookup.taps));
-        if (!(tap.x == tap.x) || !(tap.y == tap.y)) continue;  // NaN uv: no texel (adds 0)
-        const glm::vec4 a = bilinearAt(fine, tap);
-        sum += isBlended ? glm::mix(a, bilinearAt(coarse, tap), frac) : a;
-    }
+    for (int i = 0; i < lookup.taps; ++i) sum += trilinearAt(uv + lookup.step * (float(i) + 0.5f - 0.5f * float(lookup.taps)), blend);
     return sum / float(lookup.taps);
 }
 

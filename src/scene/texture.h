@@ -148,6 +148,16 @@ private:
     // shading): the public sample functions are these with their checks.
     glm::vec4 bilinearAt(const Level& level, const glm::vec2& uv) const;
     glm::vec4 trilinearAt(const glm::vec2& uv, float lod) const;
+    // A trilinear tap's levels at `lod` (clamped to the chain; not finite: the coarsest): the
+    // finer one, the next where the blend towards it is worth a second tap (else null), and that
+    // blend. A lookup's taps share one.
+    struct LevelBlend {
+        const Level* fine = nullptr;
+        const Level* coarse = nullptr;
+        float frac = 0.0f;
+    };
+    LevelBlend levelBlendOf(float lod) const;
+    glm::vec4 trilinearAt(const glm::vec2& uv, const LevelBlend& blend) const;
 
     // Level 0 is full resolution, the last is 1x1. Immutable once built, so copies of a scene
     // (blur-shell's shell scene) share the texels.

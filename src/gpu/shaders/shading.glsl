@@ -128,7 +128,6 @@ vec2 heldUv(UvTriangle t, vec2 uv) {
 // spacing of it (at most maxPathTaps), fewer where box and path together would pass the budget,
 // down to two a width of the box's narrower side; on level 0 each axis at least fewestTaps of
 // it, within that quarter in all.
-const int kMaxBoxTaps = 64;
 const int kMaxSweptBoxTaps = 256;
 ivec4 boxGrid(int index, float lengthX, float lengthY, float pathTexels, float tapsPerTexel, int maxPathTaps, ivec2 fewestTaps, int budget) {
     budget = clamp(budget, 4, kMaxSweptBoxTaps);
