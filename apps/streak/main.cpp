@@ -170,6 +170,7 @@ struct RenderArgs {
     std::vector<std::string> options;
     int aa = 1;
     float adaptive = 0.0f;
+    float adaptiveFull = 0.0f;
     std::optional<std::string> region;  ///< --region x0,y0,x1,y1
     bool sampleGrid = false;
     bool transparent = false;
@@ -370,6 +371,7 @@ int runRender(const RenderArgs& args) {
     settings.height = args.height;
     settings.aa = args.aa;
     settings.adaptive = args.adaptive;
+    settings.adaptiveFull = args.adaptiveFull;
     settings.sampleGrid = args.sampleGrid;
     settings.transparent = args.transparent;
     for (std::size_t begin = 0; begin < args.passes.size();) {
@@ -656,6 +658,10 @@ int run(int argc, char** argv) {
                        "adaptive anti-aliasing, a threshold T in (0, 1] (0: off; motion-path, analytic, higher-order): one sample per pixel first, "
                        "then --aa N x N samples where a pixel and a neighbour differ by more than T in sRGB colour or coverage "
                        "(still edges, silhouettes; a motion-blurred ramp mostly keeps one sample). 0.02 refines what aliasing shows")
+        ->capture_default_str();
+    render->add_option("--adaptive-full", renderArgs.adaptiveFull,
+                       "with --adaptive T at --aa 3 or more: a refined pixel whose largest difference is at most this takes half the "
+                       "samples a side (at least 2), the rest N x N (0: 3 T; T: every refined pixel N x N)")
         ->capture_default_str();
     render->add_option("--region", renderArgs.region,
                        "render only the pixels [x0, x1) x [y0, y1) of the image, x0,y0,x1,y1 (Blender's border render): to .exr the "

@@ -59,6 +59,10 @@ struct RenderSettings {
     // sample; still edges and silhouettes across the motion are refined. 0.02 refines what
     // aliasing would show; lower refines more.
     float adaptive = 0.0f;
+    // How many samples a refined pixel takes follows its contrast: where its largest difference
+    // is at most this, half the samples a side (at least 2, so at aa 3 or more), else aa x aa.
+    // 0 means three times `adaptive`; `adaptive` itself (or less) gives every refined pixel aa x aa.
+    float adaptiveFull = 0.0f;
     // A transparent background (Blender's Film > Transparent): the image gets alpha, each pixel's
     // exact coverage over its samples and the shutter (a translucent surface covers by its
     // opacity), and its colour is what shows over a background of alpha 0, premultiplied.

@@ -66,67 +66,97 @@ private:
 };
 
 // Adaptive antialiasing for the exact methods (RenderSettings::adaptiveThreshold): where a pixel
-// needs its N x N samples, and where one does.
+// needs its N x N samples, where fewer do, and where one does.
 //
 // Exact time spans make a pixel's colour smooth along the motion, so what point samples alias is
 // space: silhouettes, creases and material edges. Most of an image has none, so the methods take
 // two passes. The first gives every pixel one sample, at its centre (the --aa 1 pattern), exact
-// over the shutter as always. A pixel is then refined, its colour and passes made again from the
-// full pattern alone, where it or one of its 8 neighbours differs from it by more than the
+// over the shutter as always. A pixel is then refined, its colour and passes made again from a
+// fuller pattern alone, where it or one of its 8 neighbours differs from it by more than the
 // threshold in display terms: sRGB-encoded colour (clamped to [0, 1], what PSNR and the eye
 // judge) or coverage. This is Mitchell's contrast refinement (1987), on exact spans. A motion-
 // blurred edge ramps over many pixels, each close to the next, so it mostly stays at one sample;
 // a still or slow edge, and any edge across the motion, is refined. What one centre sample and
 // its neighbours all miss (a sliver thinner than a pixel that no centre sees) is not; a lower
 // threshold refines more, 0 every pixel whose neighbourhood is not flat.
+//
+// How many samples a refined pixel takes follows its contrast, as Mitchell's second stage does:
+// a box-filtered edge's error is about its contrast over the samples a side, so a pixel whose
+// largest difference is at most `fullContrast` takes coarsePatternOf(N): half the samples a
+// side, at least 2 (a quarter of them); one above it, or refined for a surface its sample
+// missed, the whole N x N. Mild steps are a textured surface's detail and the edges between
+// similar colours; strong ones are silhouettes against what lies behind (docs/BENCHMARKS.md,
+// "Refinement by contrast").
 class AdaptiveSampling {
 public:
+    // How a pixel is rendered again: not, with the coarse pattern, or with the full one.
+    enum class Level : std::uint8_t { None = 0, Coarse = 1, Full = 2 };
+
     // The region a first pass renders: the asked one grown by a pixel on each side, within the
     // image, so each pixel it holds has its neighbours and is marked as the whole frame marks it
     // (a region render stays the whole frame's to the bit).
     static std::optional<raster::PixelBounds> firstPassRegion(const std::optional<raster::PixelBounds>& region, int width, int height);
 
+    // The pattern of a pixel refined at Level::Coarse under `full`: half its samples a side, at
+    // least 2, on the same kind of pattern (n-rooks or grid). When that is no fewer samples than
+    // full has (N <= 2), there is no coarse level: every refined pixel takes the full pattern.
+    static raster::SamplePattern coarsePatternOf(const raster::SamplePattern& full);
+    static bool hasCoarseLevel(const raster::SamplePattern& full) { return coarsePatternOf(full).count() < full.count(); }
+
+    // The contrast above which a refined pixel takes the full pattern, for `threshold` and the
+    // asked `fullContrast` (RenderSettings::adaptiveFullContrast): 0 means the default, three
+    // times the threshold; at most the threshold means every refined pixel takes it.
+    static float fullContrastFor(float threshold, float fullContrast) { return fullContrast > 0.0f ? fullContrast : 3.0f * threshold; }
+
     // Marks the pixels of `within` (the whole image without one) to refine, from the first pass:
-    // by contrast, and where `geometry` (when given) has a surface its samples missed.
+    // by contrast, and where `geometry` (when given) has a surface its samples missed. With
+    // hasCoarse, a pixel whose contrast is at most fullContrast (fullContrastFor's) takes
+    // Level::Coarse; without, every marked pixel takes Level::Full.
     AdaptiveSampling(const Image& firstPass, float threshold, const std::optional<raster::PixelBounds>& within,
-                     const FirstPassGeometry* geometry = nullptr);
+                     const FirstPassGeometry* geometry = nullptr, bool hasCoarse = false, float fullContrast = 0.0f);
 
-    bool isMarked(int x, int y) const { return m_marks[std::size_t(y) * std::size_t(m_width) + std::size_t(x)] != 0; }
-    bool anyIn(const raster::PixelBounds& rect) const;
+    Level levelAt(int x, int y) const { return Level(m_marks[std::size_t(y) * std::size_t(m_width) + std::size_t(x)]); }
+    bool isMarked(int x, int y) const { return levelAt(x, y) != Level::None; }
+    // Whether rect holds a pixel of `level`.
+    bool anyIn(const raster::PixelBounds& rect, Level level) const;
     std::int64_t numMarked() const { return m_numMarked; }
+    std::int64_t numCoarse() const { return m_numCoarse; }
 
-    // Calls f(run) for each run of marked pixels in rect, one row at a time, left to right.
+    // Calls f(run) for each run of pixels of `level` in rect, one row at a time, left to right.
     template <class F>
-    void forEachRun(const raster::PixelBounds& rect, F&& f) const {
+    void forEachRun(const raster::PixelBounds& rect, Level level, F&& f) const {
         for (int y = rect.y0; y <= rect.y1; ++y)
             for (int x = rect.x0; x <= rect.x1;) {
-                if (!isMarked(x, y)) {
+                if (levelAt(x, y) != level) {
                     ++x;
                     continue;
                 }
                 int end = x;
-                while (end < rect.x1 && isMarked(end + 1, y)) ++end;
+                while (end < rect.x1 && levelAt(end + 1, y) == level) ++end;
                 f(raster::PixelBounds{x, y, end, y});
                 x = end + 1;
             }
     }
 
-    // How many samples the two passes took over numPixels (a pixel and its refinement each):
-    // what per-sample counters divide by.
+    // How many samples the passes took over numPixels (a pixel and its refinement each): what
+    // per-sample counters divide by.
     double numSamples(double numPixels, const raster::SamplePattern& full) const {
-        return numPixels + double(m_numMarked) * double(full.count());
+        return numPixels + double(m_numMarked - m_numCoarse) * double(full.count()) + double(m_numCoarse) * double(coarsePatternOf(full).count());
     }
-    // How many pixels the two passes resolved and shaded: per-pixel counters divide by it.
+    // How many pixels the passes resolved and shaded: per-pixel counters divide by it.
     double numPixelRenders(double numPixels) const { return numPixels + double(m_numMarked); }
 
-    // adaptive_threshold, adaptive_pixels_refined, adaptive_refined_fraction (of the pixels asked
-    // for) and adaptive_pixels_unseen_geometry (refined for an unseen surface alone).
+    // adaptive_threshold, adaptive_full_contrast, adaptive_pixels_refined,
+    // adaptive_pixels_refined_coarse (of them, those at Level::Coarse), adaptive_refined_fraction
+    // (of the pixels asked for) and adaptive_pixels_unseen_geometry (refined for an unseen
+    // surface alone).
     void record(RenderStats& stats, float threshold) const;
 
 private:
     int m_width = 0;
-    std::vector<std::uint8_t> m_marks;
-    std::int64_t m_numMarked = 0, m_numAsked = 0, m_numMissed = 0;  ///< missed: marked for an unseen surface alone
+    float m_fullContrast = 0.0f;  ///< 0 without a coarse level
+    std::vector<std::uint8_t> m_marks;  ///< Level per pixel
+    std::int64_t m_numMarked = 0, m_numCoarse = 0, m_numAsked = 0, m_numMissed = 0;  ///< missed: marked for an unseen surface alone
 };
 
 }  // namespace streak::exposure

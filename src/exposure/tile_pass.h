@@ -71,42 +71,57 @@ private:
     double m_from, m_to;
 };
 
-// An exact method's tile passes, one or two (AdaptiveSampling). firstPass(pattern, grid region,
+// An exact method's tile passes, one to three (AdaptiveSampling). firstPass(pattern, grid region,
 // progress, geometry) renders the whole image with the sample pattern it is handed, in a grid of
 // that region, and returns it; it tells `geometry` (when not null) what its samples showed and
 // missed. Without a threshold (or with one sample a pixel) that is all, with fullPattern. With
 // one, the first pass takes one sample per pixel, in the region grown by a pixel, and the pixels
-// it marks go to refine(refinement, image, progress), which renders them again with
-// fullPattern into the first pass's image. `refinement` keeps the marks (for the stats). The
-// marking is timed as "mark"; the passes time their own tiles.
+// it marks go to refine(refinement, level, pattern, image, progress), level by level (the coarse
+// one first, where fullPattern has one; fullContrast as AdaptiveSampling takes it), which
+// renders the pixels of that level again with its pattern into the first pass's image.
+// `refinement` keeps the marks (for the stats). The marking is timed as "mark"; the passes time
+// their own tiles.
 template <class FirstPass, class Refine>
-Image renderAdaptively(const raster::SamplePattern& fullPattern, float threshold, const std::optional<raster::PixelBounds>& region, int width,
-                       int height, RenderStats& stats, ProgressReporter* progress, std::optional<AdaptiveSampling>& refinement,
+Image renderAdaptively(const raster::SamplePattern& fullPattern, float threshold, float fullContrast, const std::optional<raster::PixelBounds>& region,
+                       int width, int height, RenderStats& stats, ProgressReporter* progress, std::optional<AdaptiveSampling>& refinement,
                        FirstPass&& firstPass, Refine&& refine) {
     if (!(threshold > 0.0f) || fullPattern.count() == 1) return firstPass(fullPattern, region, progress, nullptr);
     // The first pass is about 1/N^2 of the work of a refined pixel: a fifth of the bar.
-    ProgressStretch first(progress, 0.0, 0.2), second(progress, 0.2, 1.0);
+    ProgressStretch first(progress, 0.0, 0.2);
     std::optional<Image> image;
+    const bool hasCoarse = AdaptiveSampling::hasCoarseLevel(fullPattern);
     {
         // (What the first pass saw is freed before the second.)
         FirstPassGeometry geometry(width, height);
         image = firstPass(raster::samplePatternFor(1, false), AdaptiveSampling::firstPassRegion(region, width, height), first.get(), &geometry);
         PhaseTimer timer(stats, "mark");
-        refinement.emplace(*image, threshold, region, &geometry);
+        refinement.emplace(*image, threshold, region, &geometry, hasCoarse, fullContrast);
     }
-    refine(*refinement, *image, second.get());
+    // The rest of the bar split between the levels by their samples.
+    const raster::SamplePattern coarsePattern = AdaptiveSampling::coarsePatternOf(fullPattern);
+    const double coarseSamples = double(refinement->numCoarse()) * double(coarsePattern.count());
+    const double fullSamples = double(refinement->numMarked() - refinement->numCoarse()) * double(fullPattern.count());
+    const double split = 0.2 + 0.8 * (coarseSamples + fullSamples > 0.0 ? coarseSamples / (coarseSamples + fullSamples) : 0.0);
+    if (refinement->numCoarse() > 0) {
+        ProgressStretch coarse(progress, 0.2, split);
+        refine(*refinement, AdaptiveSampling::Level::Coarse, coarsePattern, *image, coarse.get());
+    }
+    {
+        ProgressStretch full(progress, split, 1.0);
+        refine(*refinement, AdaptiveSampling::Level::Full, fullPattern, *image, full.get());
+    }
     if (progress) progress->update(1.0);
     return std::move(*image);
 }
 
-// The refining pass of AdaptiveSampling: every tile of the grid with marked pixels, in parallel,
-// by renderTile(tile, scratch) (which renders its marked runs: renderExactTileRuns).
+// A refining pass of AdaptiveSampling: every tile of the grid with pixels of `level`, in
+// parallel, by renderTile(tile, scratch) (which renders their runs: renderExactTileRuns).
 template <class Scratch, class RenderTile>
-void runRefinementPass(const raster::TileGrid& grid, const AdaptiveSampling& refinement, ProgressReporter* progress,
+void runRefinementPass(const raster::TileGrid& grid, const AdaptiveSampling& refinement, AdaptiveSampling::Level level, ProgressReporter* progress,
                        tbb::enumerable_thread_specific<Scratch>& scratch, RenderTile&& renderTile) {
     PartsProgress tiles(progress, std::size_t(grid.numActiveTiles()));
     grid.forEachTile([&](int tile) {
-        if (refinement.anyIn(grid.tileBounds(tile))) renderTile(tile, scratch.local());
+        if (refinement.anyIn(grid.tileBounds(tile), level)) renderTile(tile, scratch.local());
         tiles.partDone();
     });
 }
@@ -254,13 +269,14 @@ void renderExactTile(const raster::TileGrid& grid, int tile, ExactTileScratch<Ca
     renderExactRect(grid.tileBounds(tile), grid.items(tile), scratch, renderRect);
 }
 
-// The refining pass's tile (AdaptiveSampling): its cache emptied, then each run of its marked
-// pixels as renderExactTile renders its whole rectangle.
+// A refining pass's tile (AdaptiveSampling): its cache emptied, then each run of its pixels of
+// `level` as renderExactTile renders its whole rectangle.
 template <class Cache, class Counters, class RenderRect>
-void renderExactTileRuns(const raster::TileGrid& grid, int tile, const AdaptiveSampling& refinement, ExactTileScratch<Cache, Counters>& scratch,
-                         RenderRect&& renderRect) {
+void renderExactTileRuns(const raster::TileGrid& grid, int tile, const AdaptiveSampling& refinement, AdaptiveSampling::Level level,
+                         ExactTileScratch<Cache, Counters>& scratch, RenderRect&& renderRect) {
     scratch.cache.clear();
-    refinement.forEachRun(grid.tileBounds(tile), [&](const raster::PixelBounds& run) { renderExactRect(run, grid.items(tile), scratch, renderRect); });
+    refinement.forEachRun(grid.tileBounds(tile), level,
+                          [&](const raster::PixelBounds& run) { renderExactRect(run, grid.items(tile), scratch, renderRect); });
 }
 
 // The tile passes of an exact method on ExactTileScratch, one or two (renderAdaptively over a
@@ -271,7 +287,7 @@ void renderExactTileRuns(const raster::TileGrid& grid, int tile, const AdaptiveS
 // an item's surface for noteUnseenItems (unseenSurface). `refinement` keeps the marks; the
 // frame's pattern is its full one again after.
 template <class Frame, class Scratch, class RenderRect>
-Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background, float adaptiveThreshold,
+Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background, float adaptiveThreshold, float adaptiveFullContrast,
                          const std::optional<raster::PixelBounds>& region, RenderStats& stats, ProgressReporter* progress, TileBudget& budget,
                          tbb::enumerable_thread_specific<Scratch>& scratch, std::optional<AdaptiveSampling>& refinement, RenderRect&& renderRect) {
     const raster::Viewport viewport = frame.viewport;
@@ -280,7 +296,7 @@ Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background
     auto usePass = [&](const raster::SamplePattern& pattern, FirstPassGeometry* geometry) { frame.pattern = pattern, frame.firstPass = geometry; };
     std::optional<raster::TileGrid> grid;
     return renderAdaptively(
-        fullPattern, adaptiveThreshold, region, viewport.width, viewport.height, stats, progress, refinement,
+        fullPattern, adaptiveThreshold, adaptiveFullContrast, region, viewport.width, viewport.height, stats, progress, refinement,
         [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& passRegion, ProgressReporter* passProgress,
             FirstPassGeometry* geometry) {
             usePass(pattern, geometry);
@@ -299,14 +315,17 @@ Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background
                                     [&](std::uint32_t item) { return frame.unseenSurfaceOf(item); });
             });
         },
-        [&](const AdaptiveSampling& marks, Image& image, ProgressReporter* passProgress) {
-            usePass(fullPattern, nullptr);
+        [&](const AdaptiveSampling& marks, AdaptiveSampling::Level level, const raster::SamplePattern& pattern, Image& image,
+            ProgressReporter* passProgress) {
+            usePass(pattern, nullptr);
             PhaseTimer timer(stats, "tiles");
-            runRefinementPass(*grid, marks, passProgress, scratch, [&](int tile, Scratch& local) {
-                renderExactTileRuns(*grid, tile, marks, local, [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
+            runRefinementPass(*grid, marks, level, passProgress, scratch, [&](int tile, Scratch& local) {
+                renderExactTileRuns(*grid, tile, marks, level, local,
+                                    [&](std::span<const std::uint32_t> items, const raster::PixelBounds& rect, bool isPixel) {
                     return renderRect(items, rect, isPixel, local, image);
                 });
             });
+            usePass(fullPattern, nullptr);
         });
 }
 

@@ -28,6 +28,10 @@ struct RenderSettings {
     // the N x N pattern where a pixel's neighbourhood differs by more than this in sRGB colour
     // or coverage. Only a method whose refinesAdaptively() is true is given one.
     float adaptiveThreshold = 0.0f;
+    // Of the pixels it refines, those whose largest difference is at most this take half the
+    // samples a side (at least 2), the rest the full N x N (AdaptiveSampling::Level): 0 means
+    // three times adaptiveThreshold; at most adaptiveThreshold, every refined pixel takes N x N.
+    float adaptiveFullContrast = 0.0f;
     ShadingMode shading = ShadingMode::Phong;
     std::uint64_t seed = 0;                    ///< for methods that sample randomly
     // Memory: the process should hold at most memoryBudgetMB. The exact methods' tile lists take

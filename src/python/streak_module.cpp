@@ -351,13 +351,13 @@ PYBIND11_MODULE(streak, m) {
         [](const py::handle& scene, const std::string& method, int width, int height, int aa, bool unlit, std::uint64_t seed,
            const std::map<std::string, std::string>& options, bool stats, int memoryBudgetMB, const std::optional<std::array<int, 4>>& region,
            bool transparent, const std::vector<std::string>& passes, int cryptomatteRanks, const py::object& progress,
-           const py::object& cancel, int threads, bool deep, int deepSamples, float adaptive) -> py::object {
+           const py::object& cancel, int threads, bool deep, int deepSamples, float adaptive, float adaptiveFull) -> py::object {
             sk::RenderSettings s;
             s.method = method, s.width = width, s.height = height, s.aa = aa, s.unlit = unlit, s.seed = seed, s.options = options;
             s.transparent = transparent;
             s.passes = passes, s.cryptomatteRanks = cryptomatteRanks;
             s.deep = deep, s.deepSamples = deepSamples;
-            s.adaptive = adaptive;
+            s.adaptive = adaptive, s.adaptiveFull = adaptiveFull;
             s.memoryBudgetMB = memoryBudgetMB;
             s.threads = threads;
             if (region) s.region = sk::Region{(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
@@ -399,9 +399,11 @@ PYBIND11_MODULE(streak, m) {
         py::arg("memory_budget_mb") = sk::kDefaultMemoryBudgetMB, py::arg("region") = py::none(), py::arg("transparent") = false,
         py::arg("passes") = std::vector<std::string>(), py::arg("cryptomatte_ranks") = 6, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("threads") = 0, py::arg("deep") = false, py::arg("deep_samples") = 16, py::arg("adaptive") = 0.0f,
+        py::arg("adaptive_full") = 0.0f,
         "render a scene (streak.Scene or spec string): an H x W x 3 float32 array, linear light (with stats=True: (image, stats dict)); "
         "adaptive: a threshold (0: off) for adaptive anti-aliasing, one sample per pixel and aa x aa where a pixel and a neighbour differ by more "
-        "than it in sRGB colour or coverage (motion-path, analytic, higher-order); "
+        "than it in sRGB colour or coverage (motion-path, analytic, higher-order); adaptive_full: a refined pixel whose largest difference is at "
+        "most it takes half the samples a side (at least 2), the rest aa x aa (0: three times adaptive); "
         "memory_budget_mb: what the exact methods' tile lists keep within; region (x0, y0, x1, y1): only the pixels [x0, x1) x [y0, y1), "
         "an (y1 - y0) x (x1 - x0) x 3 array equal to that slice of the whole image; transparent: a background of alpha 0, "
         "an H x W x 4 array whose alpha is each pixel's exact coverage and whose colour is premultiplied by it; "

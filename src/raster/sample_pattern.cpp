@@ -31,7 +31,9 @@ SamplePattern SamplePattern::rooks(int n) {
 }
 
 SamplePattern SamplePattern::grid(int n) {
-    return build(n, [&](double i, double j) { return glm::dvec2((i + 0.5) / n, (j + 0.5) / n); });
+    SamplePattern pattern = build(n, [&](double i, double j) { return glm::dvec2((i + 0.5) / n, (j + 0.5) / n); });
+    pattern.m_isGrid = true;
+    return pattern;
 }
 
 SamplePattern SamplePattern::rows(int r) {

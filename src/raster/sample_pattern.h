@@ -35,6 +35,7 @@ struct SamplePattern {
     static SamplePattern rows(int r);
     int count() const { return int(offsets.size()); }
     int samplesPerAxis() const { return m_samplesPerAxis; }
+    bool isGrid() const { return m_isGrid; }  ///< grid(n) (n-rooks or rows otherwise)
     // The spacing of the samples along each axis in fixed-point units (a pixel over n): the
     // texture footprint of one sample, since the box filter integrates the samples.
     std::int64_t footprintStep() const { return std::max<std::int64_t>(1, std::llround(double(kSubpixelScale) / double(m_samplesPerAxis))); }
@@ -48,6 +49,7 @@ private:
     static SamplePattern build(int n, Offset offset);
 
     int m_samplesPerAxis = 1;
+    bool m_isGrid = false;
 };
 
 // The positions of --aa n: rooks(n), or grid(n) when isGrid.

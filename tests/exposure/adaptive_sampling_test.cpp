@@ -22,7 +22,7 @@ Image stepImage() {
 
 std::vector<raster::PixelBounds> runsOf(const AdaptiveSampling& marks, const raster::PixelBounds& rect) {
     std::vector<raster::PixelBounds> runs;
-    marks.forEachRun(rect, [&](const raster::PixelBounds& run) { runs.push_back(run); });
+    marks.forEachRun(rect, AdaptiveSampling::Level::Full, [&](const raster::PixelBounds& run) { runs.push_back(run); });
     return runs;
 }
 
@@ -112,6 +112,81 @@ TEST(AdaptiveSampling, RefinesWhereASurfaceNoSampleSawIsMissingAround) {
     EXPECT_EQ(stats.counter("adaptive_pixels_refined"), 5.0);
     // The same material on another mesh is another surface.
     EXPECT_NE(FirstPassGeometry::keyBit(1, 0), FirstPassGeometry::keyBit(2, 0));
+}
+
+TEST(AdaptiveSampling, AMildStepTakesTheCoarsePatternAStrongOneTheFull) {
+    // Left to right, full coverage: 0.2 | 0.2 | 0.24 | 0.24 | 0.9 | 0.9 in linear light. In sRGB
+    // the first step is 0.485 -> 0.527 (0.043: above 0.02, within 3 x 0.02) and the second
+    // 0.527 -> 0.955.
+    Image image(6, 3, glm::vec3(0.2f));
+    for (int y = 0; y < 3; ++y) {
+        image.at(2, y) = image.at(3, y) = glm::vec3(0.24f);
+        image.at(4, y) = image.at(5, y) = glm::vec3(0.9f);
+    }
+    image.setAlpha(std::vector<float>(6 * 3, 1.0f));
+    using Level = AdaptiveSampling::Level;
+    const AdaptiveSampling graded(image, 0.02f, std::nullopt, nullptr, /*hasCoarse=*/true);
+    const Level expected[6] = {Level::None, Level::Coarse, Level::Coarse, Level::Full, Level::Full, Level::None};
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 6; ++x) EXPECT_EQ(graded.levelAt(x, y), expected[x]) << x << "," << y;
+    EXPECT_EQ(graded.numMarked(), 12);
+    EXPECT_EQ(graded.numCoarse(), 6);
+    // Each level's runs hold its pixels alone.
+    std::vector<raster::PixelBounds> coarse, full;
+    graded.forEachRun({0, 0, 5, 2}, Level::Coarse, [&](const raster::PixelBounds& run) { coarse.push_back(run); });
+    graded.forEachRun({0, 0, 5, 2}, Level::Full, [&](const raster::PixelBounds& run) { full.push_back(run); });
+    ASSERT_EQ(coarse.size(), 3u);
+    ASSERT_EQ(full.size(), 3u);
+    EXPECT_EQ(coarse[0].x0, 1);
+    EXPECT_EQ(coarse[0].x1, 2);
+    EXPECT_EQ(full[0].x0, 3);
+    EXPECT_EQ(full[0].x1, 4);
+    EXPECT_TRUE(graded.anyIn({1, 0, 1, 2}, Level::Coarse));
+    EXPECT_FALSE(graded.anyIn({1, 0, 1, 2}, Level::Full));
+    // Samples: 18 first, 6 pixels of 2 x 2 and 6 of 4 x 4 at --aa 4.
+    EXPECT_EQ(graded.numSamples(18.0, raster::samplePatternFor(4, false)), 18.0 + 6.0 * 4.0 + 6.0 * 16.0);
+    RenderStats stats;
+    graded.record(stats, 0.02f);
+    EXPECT_FLOAT_EQ(stats.counter("adaptive_full_contrast"), 0.06f);
+    EXPECT_EQ(stats.counter("adaptive_pixels_refined_coarse"), 6.0);
+    // A full contrast of 0.5 holds the second step too; without a coarse level, all are full.
+    const AdaptiveSampling loose(image, 0.02f, std::nullopt, nullptr, true, 0.5f);
+    EXPECT_EQ(loose.levelAt(3, 1), Level::Coarse);
+    EXPECT_EQ(loose.numCoarse(), 12);
+    const AdaptiveSampling flat(image, 0.02f, std::nullopt);
+    EXPECT_EQ(flat.levelAt(1, 1), Level::Full);
+    EXPECT_EQ(flat.numCoarse(), 0);
+    EXPECT_EQ(flat.numMarked(), 12);
+}
+
+TEST(AdaptiveSampling, ASurfaceTheFirstPassMissedTakesTheFullPatternEvenWhereTheContrastIsMild) {
+    Image image(6, 1, glm::vec3(0.2f));
+    image.at(3, 0) = image.at(4, 0) = image.at(5, 0) = glm::vec3(0.24f);  // a mild step between 2 and 3
+    FirstPassGeometry geometry(6, 1);
+    geometry.addUnseen({FirstPassGeometry::keyBit(7, 0), {2, 0, 2, 0}});  // under pixel 2 alone
+    const AdaptiveSampling marks(image, 0.02f, std::nullopt, &geometry, true);
+    EXPECT_EQ(marks.levelAt(2, 0), AdaptiveSampling::Level::Full);
+    EXPECT_EQ(marks.levelAt(3, 0), AdaptiveSampling::Level::Coarse);
+    EXPECT_EQ(marks.numMarked(), 2);
+    EXPECT_EQ(marks.numCoarse(), 1);
+    RenderStats stats;
+    marks.record(stats, 0.02f);
+    EXPECT_EQ(stats.counter("adaptive_pixels_unseen_geometry"), 0.0);  // it was refined for its contrast too
+}
+
+TEST(AdaptiveSampling, TheCoarsePatternHasHalfTheSamplesASideAndTheFullOnesKind) {
+    EXPECT_EQ(AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(8, false)).samplesPerAxis(), 4);
+    EXPECT_EQ(AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(4, false)).samplesPerAxis(), 2);
+    EXPECT_EQ(AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(3, false)).samplesPerAxis(), 2);
+    EXPECT_EQ(AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(5, false)).samplesPerAxis(), 2);
+    const raster::SamplePattern grid = AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(6, true));
+    EXPECT_TRUE(grid.isGrid());
+    EXPECT_EQ(grid.offsets, raster::samplePatternFor(3, true).offsets);
+    EXPECT_EQ(AdaptiveSampling::coarsePatternOf(raster::samplePatternFor(4, false)).offsets, raster::samplePatternFor(2, false).offsets);
+    EXPECT_TRUE(AdaptiveSampling::hasCoarseLevel(raster::samplePatternFor(3, false)));
+    EXPECT_FALSE(AdaptiveSampling::hasCoarseLevel(raster::samplePatternFor(2, false)));
+    EXPECT_FLOAT_EQ(AdaptiveSampling::fullContrastFor(0.02f, 0.0f), 0.06f);
+    EXPECT_FLOAT_EQ(AdaptiveSampling::fullContrastFor(0.02f, 0.3f), 0.3f);
 }
 
 }  // namespace streak::exposure

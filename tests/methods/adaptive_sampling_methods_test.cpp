@@ -100,12 +100,12 @@ double areaInPixel(const std::vector<glm::vec2>& polygon, int px, int py) {
 bool isSwept(int x, int y) { return x >= kMoving.x0 && x <= kMoving.x1 && y >= kMoving.y0 && y <= kMoving.y1; }
 
 Image renderWith(const std::string& method, const Scene& scene, int aa, float threshold, bool passes = false, RenderStats* stats = nullptr,
-                 std::uint64_t tileShareBytes = 0) {
+                 std::uint64_t tileShareBytes = 0, float fullContrast = 0.0f) {
     OptionMap options;
     std::unique_ptr<Renderer> renderer = createRenderer(method, options);
     RenderSettings settings;
     settings.width = kWidth, settings.height = kHeight, settings.shading = ShadingMode::Unlit, settings.aa = aa;
-    settings.adaptiveThreshold = threshold;
+    settings.adaptiveThreshold = threshold, settings.adaptiveFullContrast = fullContrast;
     settings.tileShareBytes = tileShareBytes;
     if (passes) settings.passes.depth = settings.passes.objectId = true;
     RenderStats local;
@@ -150,41 +150,54 @@ TEST(AdaptiveSamplingMethods, AsCloseToTheExactCoverageAsTheFullPatternAtAFracti
     }
 }
 
-TEST(AdaptiveSamplingMethods, EachPixelIsTheFullPatternsOrTheCentreSamplesToTheBitPassesToo) {
+// A refined pixel is the full pattern's (aa 8) or, where its contrast is mild, the coarse one's
+// (aa 4); with the full contrast at the threshold, every refined pixel is the full pattern's.
+TEST(AdaptiveSamplingMethods, EachPixelIsTheFullOrCoarsePatternsOrTheCentreSamplesToTheBitPassesToo) {
     const Scene scene = adaptiveScene(/*withTexture=*/true);
-    for (const char* method : kExactMethods) {
-        SCOPED_TRACE(method);
-        const Image adaptive = renderWith(method, scene, kAa, kThreshold, true);
-        const Image full = renderWith(method, scene, kAa, 0.0f, true);
-        const Image one = renderWith(method, scene, 1, 0.0f, true);
-        ASSERT_EQ(adaptive.channels().size(), full.channels().size());
-        int refined = 0, visible = 0;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) {
-                const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
-                const bool isFull = adaptive.at(x, y) == full.at(x, y) && adaptive.alpha()[i] == full.alpha()[i];
-                const bool isOne = adaptive.at(x, y) == one.at(x, y) && adaptive.alpha()[i] == one.alpha()[i];
-                ASSERT_TRUE(isFull || isOne) << x << "," << y;
-                refined += isFull && !isOne;
-                // Every pixel that one sample gets visibly wrong is refined.
-                const float error = std::fabs(one.at(x, y).x - full.at(x, y).x);
-                if (error > 0.1f) {
-                    ++visible;
-                    EXPECT_TRUE(isFull) << x << "," << y << ": " << error;
+    for (const char* method : kExactMethods)
+        for (const float fullContrast : {0.0f, kThreshold}) {
+            SCOPED_TRACE(std::string(method) + (fullContrast > 0.0f ? ", every refined pixel full" : ", graded"));
+            RenderStats stats;
+            const Image adaptive = renderWith(method, scene, kAa, kThreshold, true, &stats, 0, fullContrast);
+            const Image full = renderWith(method, scene, kAa, 0.0f, true);
+            const Image coarse = renderWith(method, scene, kAa / 2, 0.0f, true);
+            const Image one = renderWith(method, scene, 1, 0.0f, true);
+            ASSERT_EQ(adaptive.channels().size(), full.channels().size());
+            int refined = 0, onlyCoarse = 0, visible = 0;
+            auto same = [](const Image& a, const Image& b, int x, int y, std::size_t i) {
+                return a.at(x, y) == b.at(x, y) && a.alpha()[i] == b.alpha()[i];
+            };
+            for (int y = 0; y < kHeight; ++y)
+                for (int x = 0; x < kWidth; ++x) {
+                    const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+                    const bool isFull = same(adaptive, full, x, y, i), isOne = same(adaptive, one, x, y, i);
+                    const bool isCoarse = fullContrast == 0.0f && same(adaptive, coarse, x, y, i);
+                    ASSERT_TRUE(isFull || isCoarse || isOne) << x << "," << y;
+                    refined += (isFull || isCoarse) && !isOne;
+                    onlyCoarse += isCoarse && !isFull && !isOne;
+                    // Every pixel that one sample gets visibly wrong is refined.
+                    const float error = std::fabs(one.at(x, y).x - full.at(x, y).x);
+                    if (error > 0.1f) {
+                        ++visible;
+                        EXPECT_TRUE(isFull || isCoarse) << x << "," << y << ": " << error;
+                    }
+                    for (std::size_t c = 0; c < adaptive.channels().size(); ++c) {
+                        const float v = adaptive.channels()[c].values[i];
+                        const float source = (isFull ? full : isCoarse ? coarse : one).channels()[c].values[i];
+                        EXPECT_TRUE(v == source || (std::isnan(v) && std::isnan(source))) << adaptive.channels()[c].name << " " << x << "," << y;
+                    }
                 }
-                for (std::size_t c = 0; c < adaptive.channels().size(); ++c) {
-                    const float v = adaptive.channels()[c].values[i];
-                    const float source = (isFull ? full : one).channels()[c].values[i];
-                    EXPECT_TRUE(v == source || (std::isnan(v) && std::isnan(source))) << adaptive.channels()[c].name << " " << x << "," << y;
-                }
-            }
-        EXPECT_GT(visible, 40);
-        EXPECT_GE(refined, visible);
-        // The faint texture's inside stays at its centre sample (the full pattern's is another
-        // colour there).
-        EXPECT_EQ(adaptive.at(27, 16), one.at(27, 16));
-        EXPECT_NE(full.at(27, 16), one.at(27, 16));
-    }
+            EXPECT_GT(visible, 40);
+            EXPECT_GE(refined, visible);
+            // Graded, the mild steps (4 of the 319 refined pixels here) take the coarse pattern: each
+            // of them is the coarse render's, and no other pixel is.
+            EXPECT_EQ(double(onlyCoarse), stats.counter("adaptive_pixels_refined_coarse"));
+            if (fullContrast == 0.0f) EXPECT_GT(onlyCoarse, 0);
+            // The faint texture's inside stays at its centre sample (the full pattern's is another
+            // colour there).
+            EXPECT_EQ(adaptive.at(27, 16), one.at(27, 16));
+            EXPECT_NE(full.at(27, 16), one.at(27, 16));
+        }
 }
 
 // The memory budget halves a tile whose lists would pass its share, and the image must not

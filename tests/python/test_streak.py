@@ -63,6 +63,17 @@ class RenderTest(unittest.TestCase):
             self.assertGreater(stats["counters"]["adaptive_pixels_refined"], 0)
             full = streak.render("builtin:spin", method="analytic", width=64, height=48, aa=4)
             self.assertFalse(np.array_equal(image, full))
+            # adaptive_full is the command line's --adaptive-full: at the threshold, every refined
+            # pixel takes aa x aa, none the coarse 2 x 2 the default gives the mild steps.
+            subprocess.run([CLI, "render", "builtin:spin", "-m", "analytic", "--width", "64", "--height", "48", "--aa", "4", "--adaptive", "0.02",
+                            "--adaptive-full", "0.02", "-o", path], check=True)
+            every, every_stats = streak.render("builtin:spin", method="analytic", width=64, height=48, aa=4, adaptive=0.02, adaptive_full=0.02,
+                                               stats=True)
+            self.assertTrue(np.array_equal(every, streak.read_image(path)))
+            self.assertGreater(stats["counters"]["adaptive_pixels_refined_coarse"], 0)
+            self.assertEqual(every_stats["counters"]["adaptive_pixels_refined_coarse"], 0)
+            self.assertEqual(every_stats["counters"]["adaptive_pixels_refined"], stats["counters"]["adaptive_pixels_refined"])
+            self.assertFalse(np.array_equal(every, image))
         with self.assertRaises(streak.Error):
             streak.render("builtin:spin", width=64, height=48, adaptive=0.02)
 

@@ -87,8 +87,8 @@ public:
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
         std::optional<exposure::AdaptiveSampling> refinement;
-        Image image = exposure::runExactTilePasses(frame, kTileSize, scene.background, settings.adaptiveThreshold, settings.region, context.stats,
-                                                   context.progress, budget, scratch, refinement,
+        Image image = exposure::runExactTilePasses(frame, kTileSize, scene.background, settings.adaptiveThreshold, settings.adaptiveFullContrast,
+                                                   settings.region, context.stats, context.progress, budget, scratch, refinement,
                                                    [&](auto items, const raster::PixelBounds& rect, bool isPixel, TileScratch& local, Image& pixels) {
             return renderRect(frame, items, rect, isPixel, exposure::maxTileRecords(budget), local, pixels);
         });

@@ -151,7 +151,8 @@ public:
         std::optional<exposure::AdaptiveSampling> refinement;
         const raster::SamplePattern fullPattern = frame.pattern;
         Image image = exposure::renderAdaptively(
-            fullPattern, settings.adaptiveThreshold, settings.region, settings.width, settings.height, context.stats, context.progress, refinement,
+            fullPattern, settings.adaptiveThreshold, settings.adaptiveFullContrast, settings.region, settings.width, settings.height, context.stats,
+            context.progress, refinement,
             [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& region, ProgressReporter* progress,
                 exposure::FirstPassGeometry* firstPass) {
                 frame.pattern = pattern, frame.firstPass = firstPass;
@@ -166,16 +167,18 @@ public:
                                                   local.seenPaths, *firstPass, [&](std::uint32_t path) { return frame.unseenSurfaceOf(path); });
                 });
             },
-            [&](const exposure::AdaptiveSampling& marks, Image& pixels, ProgressReporter* progress) {
-                frame.pattern = fullPattern, frame.firstPass = nullptr;
+            [&](const exposure::AdaptiveSampling& marks, exposure::AdaptiveSampling::Level level, const raster::SamplePattern& pattern,
+                Image& pixels, ProgressReporter* progress) {
+                frame.pattern = pattern, frame.firstPass = nullptr;
                 PhaseTimer timer(context.stats, "tiles");
                 const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
-                exposure::runRefinementPass(*grid, marks, progress, scratch, [&](int tile, TileScratch& local) {
+                exposure::runRefinementPass(*grid, marks, level, progress, scratch, [&](int tile, TileScratch& local) {
                     local.movingTriangles.clear();
-                    marks.forEachRun(grid->tileBounds(tile), [&](const raster::PixelBounds& run) {
+                    marks.forEachRun(grid->tileBounds(tile), level, [&](const raster::PixelBounds& run) {
                         renderPixels(frame, *grid, tile, run, shareFragments, local, pixels);
                     });
                 });
+                frame.pattern = fullPattern;
             });
 
         Counters total;
