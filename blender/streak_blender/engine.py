@@ -103,6 +103,7 @@ class StreakRenderEngine(bpy.types.RenderEngine):
         # Adaptive anti-aliasing is the exact methods', and refines to aa >= 2.
         adaptive = settings.adaptive if settings.method in EXACT_METHODS and settings.aa >= 2 else 0.0
         out = streak.render(sc, method=settings.method, width=width, height=height, aa=settings.aa, adaptive=adaptive,
+                            adaptive_full=settings.adaptive_full if adaptive > 0.0 else 0.0,
                             unlit=settings.shading == "UNLIT",
                             options=options, threads=settings.threads, region=region, transparent=True, passes=passes,
                             cryptomatte_ranks=2 * _crypto_layers(view_layer), stats=True, progress=progress, cancel=self.should_stop)

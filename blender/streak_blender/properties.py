@@ -26,6 +26,10 @@ class StreakRenderSettings(bpy.types.PropertyGroup):
                                       "Spatial Samples where a pixel and a neighbour differ by more than this in display colour or coverage, "
                                       "or where a thin part no pixel centre saw lies (0: every pixel takes them all; 0.02 refines what "
                                       "aliasing shows)", default=0.0, min=0.0, max=1.0, precision=3)
+    adaptive_full: bpy.props.FloatProperty(name="Full Samples Above", description="With an Adaptive Threshold and 3 or more Spatial "
+                                           "Samples: a refined pixel whose largest difference is at most this takes half the samples a "
+                                           "side (at least 2), the rest all of them (0: three times the threshold; the threshold itself: "
+                                           "every refined pixel all of them)", default=0.0, min=0.0, max=1.0, precision=3)
     line_samples: bpy.props.BoolProperty(name="Line Samples", description="Motion path and analytic: where nothing in a tile moves, "
                                          "each sample is the line through it across its pixel, so edges and texture are integrated "
                                          "exactly along x and sampled only at the lines' rows", default=False)

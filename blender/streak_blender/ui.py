@@ -28,6 +28,8 @@ class RENDER_PT_streak(StreakPanel, bpy.types.Panel):
         layout.prop(settings, "aa")
         if settings.method in EXACT_METHODS:
             layout.prop(settings, "adaptive")
+            if settings.adaptive > 0.0:
+                layout.prop(settings, "adaptive_full")
         if settings.method in LINE_METHODS:
             layout.prop(settings, "line_samples")
             if settings.line_samples:

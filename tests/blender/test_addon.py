@@ -132,6 +132,16 @@ class Addon(unittest.TestCase):
         print(f"adaptive add-on against the glTF export's --adaptive: {whole:.1f} dB, foreground {fg:.1f} dB")
         self.assertGreaterEqual(whole, 45.0)
         self.assertGreaterEqual(fg, 45.0)
+        # Full Samples Above is --adaptive-full: at the threshold every refined pixel takes all aa x aa.
+        render_addon(os.path.join(TMP, "adaptive_full.exr"), adaptive=0.02, adaptive_full=0.02)
+        render_gltf(os.path.join(TMP, "adaptive_full_gltf.exr"), "--adaptive", "0.02", "--adaptive-full", "0.02")
+        full_addon, full_gltf = (streak.read_image(os.path.join(TMP, name)) for name in ("adaptive_full.exr", "adaptive_full_gltf.exr"))
+        whole, fg = psnr(full_addon, full_gltf)
+        print(f"adaptive-full add-on against the glTF export's --adaptive-full: {whole:.1f} dB, foreground {fg:.1f} dB")
+        self.assertGreaterEqual(whole, 45.0)
+        self.assertGreaterEqual(fg, 45.0)
+        self.assertFalse(np.array_equal(full_addon, streak.read_image(os.path.join(TMP, "adaptive.exr"))))
+        bpy.context.scene.streak.adaptive_full = 0.0
         # A sampled method has nothing to refine adaptively: the setting is left out, not an error.
         report = render_addon(os.path.join(TMP, "adaptive_accumulation.exr"), adaptive=0.02, method="accumulation", samples=4)
         self.assertEqual(report["status"], "done", report)
