@@ -656,7 +656,7 @@ int run(int argc, char** argv) {
     render->add_option("--aa", renderArgs.aa, "spatial anti-aliasing: N x N sub-pixel samples (n-rooks: each its own row and column), box filter")->capture_default_str();
     render->add_option("--adaptive", renderArgs.adaptive,
                        "adaptive anti-aliasing, a threshold T in (0, 1] (0: off; motion-path, analytic, higher-order): one sample per pixel first, "
-                       "then --aa N x N samples where a pixel and a neighbour differ by more than T in sRGB colour or coverage "
+                       "then --aa N x N samples (or half as many a side: --adaptive-full) where a pixel and a neighbour differ by more than T in sRGB colour or coverage "
                        "(still edges, silhouettes; a motion-blurred ramp mostly keeps one sample). 0.02 refines what aliasing shows")
         ->capture_default_str();
     render->add_option("--adaptive-full", renderArgs.adaptiveFull,

@@ -23,7 +23,7 @@ class StreakRenderSettings(bpy.types.PropertyGroup):
     aa: bpy.props.IntProperty(name="Spatial Samples", description="N x N sub-pixel samples per pixel (box filter)",
                               default=4, min=1, max=16)
     adaptive: bpy.props.FloatProperty(name="Adaptive Threshold", description="Exact methods: one sample per pixel first, then the "
-                                      "Spatial Samples where a pixel and a neighbour differ by more than this in display colour or coverage, "
+                                      "Spatial Samples (or half as many a side: Full Samples Above) where a pixel and a neighbour differ by more than this in display colour or coverage, "
                                       "or where a thin part no pixel centre saw lies (0: every pixel takes them all; 0.02 refines what "
                                       "aliasing shows)", default=0.0, min=0.0, max=1.0, precision=3)
     adaptive_full: bpy.props.FloatProperty(name="Full Samples Above", description="With an Adaptive Threshold and 3 or more Spatial "

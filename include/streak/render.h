@@ -55,7 +55,7 @@ struct RenderSettings {
     // Adaptive antialiasing, 0 off (motion-path, analytic, higher-order): every pixel first takes
     // one sample at its centre, exact over the shutter; then the pixels where it or a neighbour
     // differs from the other by more than this, in sRGB-encoded colour (0..1) or coverage, are
-    // rendered again from aa x aa samples. A blurred edge ramps gently and mostly keeps one
+    // rendered again from aa x aa samples (or half as many a side: adaptiveFull). A blurred edge ramps gently and mostly keeps one
     // sample; still edges and silhouettes across the motion are refined. 0.02 refines what
     // aliasing would show; lower refines more.
     float adaptive = 0.0f;

@@ -156,7 +156,9 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     if (!(settings.adaptive >= 0.0f && settings.adaptive <= 1.0f))
         throw Error("render: adaptive must be a threshold in [0, 1] (0: off), got " + std::to_string(settings.adaptive));
     if (!(settings.adaptiveFull >= 0.0f && settings.adaptiveFull <= 1.0f))
-        throw Error("render: adaptive-full must be a contrast in [0, 1] (0: three times adaptive), got " + std::to_string(settings.adaptiveFull));
+        throw Error("render: adaptiveFull must be a contrast in [0, 1] (0: three times adaptive), got " + std::to_string(settings.adaptiveFull));
+    if (settings.adaptiveFull > 0.0f && !(settings.adaptive > 0.0f))
+        throw Error("render: adaptiveFull grades what adaptive refines, so it needs adaptive on, got adaptive " + std::to_string(settings.adaptive));
     if (settings.adaptive > 0.0f && settings.aa < 2)
         throw Error("render: adaptive refines pixels to aa x aa samples, so it needs aa 2 or more, got aa " + std::to_string(settings.aa));
     if (settings.threads < 0) throw Error("render: threads must be 0 (all cores) or more, got " + std::to_string(settings.threads));
@@ -174,8 +176,7 @@ Renderer::Renderer(const RenderSettings& settings) : m_impl(std::make_unique<Imp
     s.width = settings.width, s.height = settings.height, s.aa = settings.aa;
     s.isGridPattern = settings.sampleGrid;
     s.adaptiveThreshold = settings.adaptive;
-    // (At most the threshold: every refined pixel full, as a contrast just above it would say.)
-    s.adaptiveFullContrast = settings.adaptiveFull > 0.0f ? std::max(settings.adaptiveFull, settings.adaptive) : 0.0f;
+    s.adaptiveFullContrast = settings.adaptiveFull;
     s.shading = settings.unlit ? ShadingMode::Unlit : ShadingMode::Phong;
     s.seed = settings.seed;
     s.memoryBudgetMB = std::uint64_t(settings.memoryBudgetMB);

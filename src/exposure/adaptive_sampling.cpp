@@ -48,7 +48,7 @@ AdaptiveSampling::AdaptiveSampling(const Image& firstPass, float threshold, cons
         return most;
     };
     // (Past fullContrast nothing changes the level: the search stops there.)
-    const float enough = m_fullContrast > 0.0f ? m_fullContrast : threshold;
+    const float enough = std::max(m_fullContrast, threshold);
     for (int y = area.y0; y <= area.y1; ++y)
         for (int x = area.x0; x <= area.x1; ++x) {
             float most = 0.0f;

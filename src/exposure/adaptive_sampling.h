@@ -7,6 +7,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -70,7 +71,7 @@ private:
 //
 // Exact time spans make a pixel's colour smooth along the motion, so what point samples alias is
 // space: silhouettes, creases and material edges. Most of an image has none, so the methods take
-// two passes. The first gives every pixel one sample, at its centre (the --aa 1 pattern), exact
+// a first pass and refine. The first gives every pixel one sample, at its centre (the --aa 1 pattern), exact
 // over the shutter as always. A pixel is then refined, its colour and passes made again from a
 // fuller pattern alone, where it or one of its 8 neighbours differs from it by more than the
 // threshold in display terms: sRGB-encoded colour (clamped to [0, 1], what PSNR and the eye
@@ -106,7 +107,9 @@ public:
     // The contrast above which a refined pixel takes the full pattern, for `threshold` and the
     // asked `fullContrast` (RenderSettings::adaptiveFullContrast): 0 means the default, three
     // times the threshold; at most the threshold means every refined pixel takes it.
-    static float fullContrastFor(float threshold, float fullContrast) { return fullContrast > 0.0f ? fullContrast : 3.0f * threshold; }
+    static float fullContrastFor(float threshold, float fullContrast) {
+        return fullContrast > 0.0f ? std::max(fullContrast, threshold) : 3.0f * threshold;
+    }
 
     // Marks the pixels of `within` (the whole image without one) to refine, from the first pass:
     // by contrast, and where `geometry` (when given) has a surface its samples missed. With

@@ -279,10 +279,11 @@ void renderExactTileRuns(const raster::TileGrid& grid, int tile, const AdaptiveS
                           [&](const raster::PixelBounds& run) { renderExactRect(run, grid.items(tile), scratch, renderRect); });
 }
 
-// The tile passes of an exact method on ExactTileScratch, one or two (renderAdaptively over a
+// The tile passes of an exact method on ExactTileScratch, one to three (renderAdaptively over a
 // grid of tileSize tiles): `frame` is the method's, with its viewport, its items' pixel `bounds`,
-// its full sample `pattern` (which each pass sets to its own) and `firstPass` (what a first pass
-// tells FirstPassGeometry, else null); renderRect(items, rect, isPixel, scratch, image) renders
+// its full sample `pattern`, and usePass(pattern, firstPass), which sets the pass's pattern
+// (and what the method derives from it) and what a first pass tells FirstPassGeometry (else
+// null); renderRect(items, rect, isPixel, scratch, image) renders
 // a piece of a tile (renderExactTile, renderExactTileRuns), and frame.unseenSurfaceOf(item) is
 // an item's surface for noteUnseenItems (unseenSurface). `refinement` keeps the marks; the
 // frame's pattern is its full one again after.
@@ -293,13 +294,12 @@ Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background
     const raster::Viewport viewport = frame.viewport;
     const raster::SamplePattern fullPattern = frame.pattern;
     const std::span<const raster::PixelBounds> bounds(frame.bounds);
-    auto usePass = [&](const raster::SamplePattern& pattern, FirstPassGeometry* geometry) { frame.pattern = pattern, frame.firstPass = geometry; };
     std::optional<raster::TileGrid> grid;
     return renderAdaptively(
         fullPattern, adaptiveThreshold, adaptiveFullContrast, region, viewport.width, viewport.height, stats, progress, refinement,
         [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& passRegion, ProgressReporter* passProgress,
             FirstPassGeometry* geometry) {
-            usePass(pattern, geometry);
+            frame.usePass(pattern, geometry);
             grid.emplace(viewport, tileSize, passRegion);
             return runTilePass(*grid, bounds, background, viewport.width, viewport.height, stats, passProgress, budget, scratch,
                                [&](int tile, Scratch& local, Image& image) {
@@ -317,7 +317,7 @@ Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background
         },
         [&](const AdaptiveSampling& marks, AdaptiveSampling::Level level, const raster::SamplePattern& pattern, Image& image,
             ProgressReporter* passProgress) {
-            usePass(pattern, nullptr);
+            frame.usePass(pattern, nullptr);
             PhaseTimer timer(stats, "tiles");
             runRefinementPass(*grid, marks, level, passProgress, scratch, [&](int tile, Scratch& local) {
                 renderExactTileRuns(*grid, tile, marks, level, local,
@@ -325,7 +325,7 @@ Image runExactTilePasses(Frame& frame, int tileSize, const glm::vec3& background
                     return renderRect(items, rect, isPixel, local, image);
                 });
             });
-            usePass(fullPattern, nullptr);
+            frame.usePass(fullPattern, nullptr);
         });
 }
 

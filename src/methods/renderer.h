@@ -25,8 +25,9 @@ struct RenderSettings {
     int aa = 1;                                ///< N: N x N sub-pixel samples, box filter
     bool isGridPattern = false;                ///< the N x N grid of cell centres instead of n-rooks (raster::SamplePattern)
     // Adaptive antialiasing (exposure::AdaptiveSampling), 0 off: one sample per pixel first, then
-    // the N x N pattern where a pixel's neighbourhood differs by more than this in sRGB colour
-    // or coverage. Only a method whose refinesAdaptively() is true is given one.
+    // more where a pixel's neighbourhood differs by more than this in sRGB colour or coverage
+    // (the N x N pattern, or half its samples a side: adaptiveFullContrast). Only a method whose
+    // refinesAdaptively() is true is given one.
     float adaptiveThreshold = 0.0f;
     // Of the pixels it refines, those whose largest difference is at most this take half the
     // samples a side (at least 2), the rest the full N x N (AdaptiveSampling::Level): 0 means

@@ -822,6 +822,7 @@ TEST(Cli, BadInputIsOneLineExitTwoAndNothingWritten) {
         {"adaptive past 1", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive 1.5 -o " + out},
         {"negative adaptive-full", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive 0.02 --adaptive-full -0.1 -o " + out},
         {"adaptive-full past 1", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive 0.02 --adaptive-full 2 -o " + out},
+        {"adaptive-full without adaptive", "render builtin:crossing -m analytic --width 16 --height 16 --aa 4 --adaptive-full 0.1 -o " + out},
         {"adaptive for a sampling method", "render " + ok + "--aa 4 --adaptive 0.02 -o " + out},
         {"adaptive for a GL twin", "render builtin:crossing -m motion-path-gl --width 16 --height 16 --aa 4 --adaptive 0.02 -o " + out},
         {"non-numeric width", "render builtin:crossing --width abc -o " + out},

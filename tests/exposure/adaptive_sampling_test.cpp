@@ -153,6 +153,10 @@ TEST(AdaptiveSampling, AMildStepTakesTheCoarsePatternAStrongOneTheFull) {
     const AdaptiveSampling loose(image, 0.02f, std::nullopt, nullptr, true, 0.5f);
     EXPECT_EQ(loose.levelAt(3, 1), Level::Coarse);
     EXPECT_EQ(loose.numCoarse(), 12);
+    // A full contrast below the threshold is the threshold: every marked pixel full, none lost.
+    const AdaptiveSampling below(image, 0.02f, std::nullopt, nullptr, true, 0.01f);
+    EXPECT_EQ(below.numMarked(), 12);
+    EXPECT_EQ(below.numCoarse(), 0);
     const AdaptiveSampling flat(image, 0.02f, std::nullopt);
     EXPECT_EQ(flat.levelAt(1, 1), Level::Full);
     EXPECT_EQ(flat.numCoarse(), 0);
@@ -187,6 +191,7 @@ TEST(AdaptiveSampling, TheCoarsePatternHasHalfTheSamplesASideAndTheFullOnesKind)
     EXPECT_FALSE(AdaptiveSampling::hasCoarseLevel(raster::samplePatternFor(2, false)));
     EXPECT_FLOAT_EQ(AdaptiveSampling::fullContrastFor(0.02f, 0.0f), 0.06f);
     EXPECT_FLOAT_EQ(AdaptiveSampling::fullContrastFor(0.02f, 0.3f), 0.3f);
+    EXPECT_FLOAT_EQ(AdaptiveSampling::fullContrastFor(0.02f, 0.01f), 0.02f);
 }
 
 }  // namespace streak::exposure

@@ -100,8 +100,9 @@ double areaInPixel(const std::vector<glm::vec2>& polygon, int px, int py) {
 bool isSwept(int x, int y) { return x >= kMoving.x0 && x <= kMoving.x1 && y >= kMoving.y0 && y <= kMoving.y1; }
 
 Image renderWith(const std::string& method, const Scene& scene, int aa, float threshold, bool passes = false, RenderStats* stats = nullptr,
-                 std::uint64_t tileShareBytes = 0, float fullContrast = 0.0f) {
+                 std::uint64_t tileShareBytes = 0, float fullContrast = 0.0f, bool lineSamples = false) {
     OptionMap options;
+    if (lineSamples) options.set("line-samples", "1");
     std::unique_ptr<Renderer> renderer = createRenderer(method, options);
     RenderSettings settings;
     settings.width = kWidth, settings.height = kHeight, settings.shading = ShadingMode::Unlit, settings.aa = aa;
@@ -198,6 +199,42 @@ TEST(AdaptiveSamplingMethods, EachPixelIsTheFullOrCoarsePatternsOrTheCentreSampl
             EXPECT_EQ(adaptive.at(27, 16), one.at(27, 16));
             EXPECT_NE(full.at(27, 16), one.at(27, 16));
         }
+}
+
+// With line samples, a still tile's samples are lines: a coarse pixel there takes the coarse
+// pattern's lines (4 rows at --aa 8, where the full pattern has 16), and is that render's.
+TEST(AdaptiveSamplingMethods, WithLineSamplesACoarsePixelTakesTheCoarsePatternsLines) {
+    // Nothing moves, so every tile takes lines: over a black wall that covers the frame, a
+    // bright quad (strong edges) and a dark one of 0.003 (0.039 in sRGB, the same coverage: mild
+    // at threshold 0.02, within 3 x 0.02).
+    Scene scene = test::emptyScene();
+    const test::PixelCamera cam{kWidth, kHeight, 2.0f};
+    test::addPixelQuad(scene, test::PixelCamera{kWidth, kHeight, 3.0f}, test::addMaterial(scene, glm::vec3(0.0f)), -2.0f, -2.0f,
+                       float(kWidth) + 2.0f, float(kHeight) + 2.0f);
+    test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(0.9f)), 3.3f, 2.7f, 17.6f, 9.2f);
+    test::addPixelQuad(scene, cam, test::addMaterial(scene, glm::vec3(0.003f)), 4.4f, 13.3f, 27.7f, 20.8f);
+    validateScene(scene);
+    for (const char* method : {"motion-path", "analytic"}) {
+        SCOPED_TRACE(method);
+        RenderStats stats, fullStats;
+        const Image adaptive = renderWith(method, scene, kAa, kThreshold, false, &stats, 0, 0.0f, true);
+        const Image full = renderWith(method, scene, kAa, 0.0f, false, &fullStats, 0, 0.0f, true);
+        const Image coarse = renderWith(method, scene, kAa / 2, 0.0f, false, nullptr, 0, 0.0f, true);
+        // (The first pass takes points, not lines: its pixels are the point render's.)
+        const Image one = renderWith(method, scene, 1, 0.0f);
+        ASSERT_EQ(fullStats.counter("line_samples"), 1.0);
+        int onlyCoarse = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                const std::size_t i = std::size_t(y) * kWidth + std::size_t(x);
+                auto same = [&](const Image& other) { return adaptive.at(x, y) == other.at(x, y) && adaptive.alpha()[i] == other.alpha()[i]; };
+                ASSERT_TRUE(same(full) || same(coarse) || same(one)) << x << "," << y;
+                onlyCoarse += same(coarse) && !same(full) && !same(one);
+            }
+        // (Pixels flat themselves beside a mild edge are refined too, to what all three give.)
+        EXPECT_GT(onlyCoarse, 0);
+        EXPECT_LE(double(onlyCoarse), stats.counter("adaptive_pixels_refined_coarse"));
+    }
 }
 
 // The memory budget halves a tile whose lists would pass its share, and the image must not

@@ -92,7 +92,6 @@ public:
         // their shadings over the whole pixel, each a box over the stretches and rows it serves.
         frame.lineResolve = options.resolve;
         frame.lineResolve.shading.cellsPerAxis = 1;
-        frame.linePattern = exposure::linePatternFor(frame.pattern, m_options.lineRows);
         context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
@@ -169,7 +168,14 @@ private:
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
         bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
         exposure::ExactResolveOptions lineResolve;  ///< the resolve's options in a line tile: one shading cell
-        raster::SamplePattern linePattern;          ///< a line tile's rows (line-rows; else the pattern)
+        raster::SamplePattern linePattern;          ///< a line tile's rows (line-rows; else the pass's pattern)
+
+        // The pass's sample pattern (runExactTilePasses), with the line tiles' rows that follow
+        // from it, and what its first pass tells (null in any other).
+        void usePass(const raster::SamplePattern& passPattern, exposure::FirstPassGeometry* geometry) {
+            pattern = passPattern, firstPass = geometry;
+            linePattern = exposure::linePatternFor(pattern, options.lineRows);
+        }
 
         // A segment's surface and nearest depth, for the first pass's unseen segments.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {

@@ -170,6 +170,12 @@ private:
         mutable std::optional<exposure::PassFrame> passes;  ///< when settings.passes asks for any (tiles write their own pixels)
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
 
+        // The pass's sample pattern (runExactTilePasses), and what its first pass tells (null in
+        // any other).
+        void usePass(const raster::SamplePattern& passPattern, exposure::FirstPassGeometry* passGeometry) {
+            pattern = passPattern, firstPass = passGeometry;
+        }
+
         // A segment's surface and nearest depth, for the first pass's unseen segments.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t segment) const {
             return exposure::unseenSurface(geometry->flat().triangles()[geometry->segments()[segment].triangle], geometry->segments()[segment].nearness);

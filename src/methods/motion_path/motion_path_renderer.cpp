@@ -143,7 +143,6 @@ public:
             frame.generate();
         }
         frame.canLineSample = options.lineSamples && exposure::lineSamplingAllowed(scene, frame.segmented);
-        frame.linePattern = exposure::linePatternFor(frame.pattern, options.lineRows);
         context.stats.setCounter("line_samples", frame.canLineSample ? 1 : 0);
         tbb::enumerable_thread_specific<TileScratch> scratch;
         exposure::TileBudget budget(settings.memoryBudgetMB, settings.tileShareBytes);
@@ -155,7 +154,7 @@ public:
             context.progress, refinement,
             [&](const raster::SamplePattern& pattern, const std::optional<raster::PixelBounds>& region, ProgressReporter* progress,
                 exposure::FirstPassGeometry* firstPass) {
-                frame.pattern = pattern, frame.firstPass = firstPass;
+                frame.usePass(pattern, firstPass);
                 grid.emplace(frame.viewport, kTileSize, region);
                 return exposure::runTilePass(*grid, std::span<const raster::PixelBounds>(frame.bounds), scene.background, settings.width,
                                              settings.height, context.stats, progress, budget, scratch, [&](int tile, TileScratch& local, Image& pixels) {
@@ -169,7 +168,7 @@ public:
             },
             [&](const exposure::AdaptiveSampling& marks, exposure::AdaptiveSampling::Level level, const raster::SamplePattern& pattern,
                 Image& pixels, ProgressReporter* progress) {
-                frame.pattern = pattern, frame.firstPass = nullptr;
+                frame.usePass(pattern, nullptr);
                 PhaseTimer timer(context.stats, "tiles");
                 const std::size_t shareFragments = budget.maxItems(kBytesPerFragment);
                 exposure::runRefinementPass(*grid, marks, level, progress, scratch, [&](int tile, TileScratch& local) {
@@ -178,7 +177,7 @@ public:
                         renderPixels(frame, *grid, tile, run, shareFragments, local, pixels);
                     });
                 });
-                frame.pattern = fullPattern;
+                frame.usePass(fullPattern, nullptr);
             });
 
         Counters total;
@@ -293,7 +292,14 @@ private:
         raster::SamplePattern pattern;
         exposure::FirstPassGeometry* firstPass = nullptr;  ///< adaptive sampling's first pass: what its samples show and miss
         bool canLineSample = false;  ///< line-samples=1 where the frame allows it (render)
-        raster::SamplePattern linePattern;  ///< a line tile's rows (line-rows; else the pattern)
+        raster::SamplePattern linePattern;  ///< a line tile's rows (line-rows; else the pass's pattern)
+
+        // The pass's sample pattern (exposure::renderAdaptively), with the line tiles' rows that
+        // follow from it, and what its first pass tells (null in any other).
+        void usePass(const raster::SamplePattern& passPattern, exposure::FirstPassGeometry* geometry) {
+            pattern = passPattern, firstPass = geometry;
+            linePattern = exposure::linePatternFor(pattern, options.lineRows);
+        }
 
         // A path's surface and nearest depth, for the first pass's unseen paths.
         std::pair<std::uint64_t, float> unseenSurfaceOf(std::uint32_t path) const {
