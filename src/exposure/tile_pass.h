@@ -89,7 +89,8 @@ Image renderAdaptively(const raster::SamplePattern& fullPattern, float threshold
     // The first pass is about 1/N^2 of the work of a refined pixel: a fifth of the bar.
     ProgressStretch first(progress, 0.0, 0.2);
     std::optional<Image> image;
-    const bool hasCoarse = AdaptiveSampling::hasCoarseLevel(fullPattern);
+    const raster::SamplePattern coarsePattern = AdaptiveSampling::coarsePatternOf(fullPattern);
+    const bool hasCoarse = coarsePattern.count() < fullPattern.count();  // (AdaptiveSampling::hasCoarseLevel)
     {
         // (What the first pass saw is freed before the second.)
         FirstPassGeometry geometry(width, height);
@@ -98,7 +99,6 @@ Image renderAdaptively(const raster::SamplePattern& fullPattern, float threshold
         refinement.emplace(*image, threshold, region, &geometry, hasCoarse, fullContrast);
     }
     // The rest of the bar split between the levels by their samples.
-    const raster::SamplePattern coarsePattern = AdaptiveSampling::coarsePatternOf(fullPattern);
     const double coarseSamples = double(refinement->numCoarse()) * double(coarsePattern.count());
     const double fullSamples = double(refinement->numMarked() - refinement->numCoarse()) * double(fullPattern.count());
     const double split = 0.2 + 0.8 * (coarseSamples + fullSamples > 0.0 ? coarseSamples / (coarseSamples + fullSamples) : 0.0);
